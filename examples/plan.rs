@@ -1,0 +1,282 @@
+//! The native command-line planner.
+//!
+//! ```text
+//! cargo run --release --example plan -- FIELD.geojson [--width M] [--headland-passes N]
+//!     [--turn-radius M] [--bearing DEG] [... every planner option ...] [--out PLAN.geojson]
+//! ```
+//!
+//! Every option of the JavaScript API is a flag here, its name in kebab-case (`headlandPasses`
+//! is `--headland-passes`): flags are turned into the same options object JavaScript passes, so a
+//! new option is a new flag without any change to this file. `FIELD` may be `-` for standard
+//! input. The plan (GeoJSON) goes to standard output unless `--out` names a file.
+//!
+//! Exit status: 0 with a plan; 2 when the input or an option is invalid, with one line of JSON
+//! `{"code": ..., "message": ...}` on standard error; 1 when a file cannot be read or written.
+
+use furrow::options::OPTION_DOCS;
+use furrow::{plan_geojson, PlanError, PlanOptions};
+use serde_json::{Map, Value};
+use std::io::{Read, Write};
+use std::process::ExitCode;
+
+const USAGE: &str =
+    "usage: plan FIELD.geojson [--OPTION VALUE ...] [--out PLAN.geojson] [--pretty] [--summary]";
+
+fn main() -> ExitCode {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    match run(&args) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(Failure::Invalid(e)) => {
+            eprintln!("{}", e.to_json());
+            ExitCode::from(2)
+        }
+        Err(Failure::Usage(message)) => {
+            eprintln!("{}", json_line("usage", &format!("{message}; {USAGE}")));
+            ExitCode::from(2)
+        }
+        Err(Failure::Io(message)) => {
+            eprintln!("{}", json_line("io_error", &message));
+            ExitCode::from(1)
+        }
+    }
+}
+
+enum Failure {
+    Invalid(PlanError),
+    Usage(String),
+    Io(String),
+}
+
+/// What the command line asks for.
+struct Command {
+    field: String,
+    options: Map<String, Value>,
+    out: Option<String>,
+    pretty: bool,
+    summary_only: bool,
+}
+
+fn run(args: &[String]) -> Result<(), Failure> {
+    if args.iter().any(|a| a == "--help" || a == "-h") {
+        print_help();
+        return Ok(());
+    }
+    let command = parse_args(args)?;
+    let options: PlanOptions =
+        serde_json::from_value(Value::Object(command.options)).map_err(|e| {
+            Failure::Invalid(PlanError::new(
+                furrow::ErrorCode::InvalidOption,
+                format!("invalid option: {}", kebab_message(&e.to_string())),
+            ))
+        })?;
+    let text = read_input(&command.field)?;
+    let plan = plan_geojson(&text, &options).map_err(Failure::Invalid)?;
+    let geojson = plan.to_geojson();
+    let mut out = if command.summary_only {
+        to_json(&geojson.summary, command.pretty)
+    } else {
+        to_json(&geojson, command.pretty)
+    };
+    out.push('\n');
+    match &command.out {
+        Some(path) => std::fs::write(path, out)
+            .map_err(|e| Failure::Io(format!("cannot write {path}: {e}")))?,
+        None => std::io::stdout()
+            .lock()
+            .write_all(out.as_bytes())
+            .map_err(|e| Failure::Io(format!("cannot write the plan: {e}")))?,
+    }
+    Ok(())
+}
+
+fn parse_args(args: &[String]) -> Result<Command, Failure> {
+    let mut field = None;
+    let mut options = Map::new();
+    let mut out = None;
+    let (mut pretty, mut summary_only) = (false, false);
+    let mut i = 0;
+    while i < args.len() {
+        let arg = &args[i];
+        i += 1;
+        let Some(flag) = arg.strip_prefix("--") else {
+            if field.replace(arg.clone()).is_some() {
+                return Err(Failure::Usage(format!("more than one field given ({arg})")));
+            }
+            continue;
+        };
+        // `--flag=value` or `--flag value`; a flag without a value is `true`.
+        let (name, inline) = match flag.split_once('=') {
+            Some((n, v)) => (n, Some(v.to_string())),
+            None => (flag, None),
+        };
+        let value = match inline {
+            Some(v) => Some(v),
+            None if args.get(i).is_some_and(|next| !next.starts_with("--")) => {
+                i += 1;
+                Some(args[i - 1].clone())
+            }
+            None => None,
+        };
+        match name {
+            "out" => out = Some(value.ok_or_else(|| Failure::Usage("--out needs a path".into()))?),
+            "pretty" => pretty = true,
+            "summary" => summary_only = true,
+            _ => {
+                let v = value.map_or(Value::Bool(true), |v| flag_value(&v));
+                options.insert(camel_case(name), v);
+            }
+        }
+    }
+    let field = field.ok_or_else(|| Failure::Usage("no field given".into()))?;
+    Ok(Command {
+        field,
+        options,
+        out,
+        pretty,
+        summary_only,
+    })
+}
+
+/// A flag's text as a JSON value: a number, `true`/`false`/`null`, JSON for `[...]` and `{...}`,
+/// otherwise a string.
+fn flag_value(text: &str) -> Value {
+    if let Ok(x) = text.parse::<f64>() {
+        if let Some(n) = serde_json::Number::from_f64(x) {
+            // Whole numbers stay integers, so that count options (u32) accept them.
+            if x.fract() == 0.0 && x.abs() < 9e15 {
+                return Value::from(x as i64);
+            }
+            return Value::Number(n);
+        }
+    }
+    match text {
+        "true" => return Value::Bool(true),
+        "false" => return Value::Bool(false),
+        "null" => return Value::Null,
+        _ => {}
+    }
+    if text.starts_with('[') || text.starts_with('{') {
+        if let Ok(v) = serde_json::from_str(text) {
+            return v;
+        }
+    }
+    Value::String(text.to_string())
+}
+
+/// `headland-passes` to `headlandPasses`.
+fn camel_case(kebab: &str) -> String {
+    let mut out = String::with_capacity(kebab.len());
+    let mut upper = false;
+    for c in kebab.chars() {
+        if c == '-' {
+            upper = true;
+        } else if upper {
+            out.extend(c.to_uppercase());
+            upper = false;
+        } else {
+            out.push(c);
+        }
+    }
+    out
+}
+
+/// `headlandPasses` to `headland-passes`.
+fn kebab_case(camel: &str) -> String {
+    let mut out = String::with_capacity(camel.len() + 4);
+    for c in camel.chars() {
+        if c.is_uppercase() {
+            out.push('-');
+            out.extend(c.to_lowercase());
+        } else {
+            out.push(c);
+        }
+    }
+    out
+}
+
+/// serde names options in camelCase; on the command line they are flags.
+fn kebab_message(message: &str) -> String {
+    let mut out = String::new();
+    let mut parts = message.split('`');
+    if let Some(first) = parts.next() {
+        out.push_str(first);
+    }
+    for (k, part) in parts.enumerate() {
+        if k % 2 == 0 {
+            out.push_str("`--");
+            out.push_str(&kebab_case(part));
+            out.push('`');
+        } else {
+            out.push_str(part);
+        }
+    }
+    out
+}
+
+fn read_input(path: &str) -> Result<String, Failure> {
+    if path == "-" {
+        let mut text = String::new();
+        std::io::stdin()
+            .read_to_string(&mut text)
+            .map_err(|e| Failure::Io(format!("cannot read standard input: {e}")))?;
+        return Ok(text);
+    }
+    std::fs::read_to_string(path).map_err(|e| Failure::Io(format!("cannot read {path}: {e}")))
+}
+
+fn json_line(code: &str, message: &str) -> String {
+    serde_json::json!({ "code": code, "message": message }).to_string()
+}
+
+fn print_help() {
+    println!(
+        "furrow {}: plan coverage paths for a field\n",
+        env!("CARGO_PKG_VERSION")
+    );
+    println!("{USAGE}\n");
+    println!("FIELD is GeoJSON (a FeatureCollection with roles, a Feature or a Polygon); - reads standard input.\n");
+    println!("Planner options:");
+    for (key, unit, doc) in OPTION_DOCS {
+        println!(
+            "  --{:<22} {:<13} {doc}",
+            kebab_case(key),
+            format!("<{unit}>")
+        );
+    }
+    println!("\nOutput:");
+    println!(
+        "  --{:<22} {:<13} write the plan to a file instead of standard output",
+        "out", "<path>"
+    );
+    println!("  --{:<22} {:<13} indent the JSON", "pretty", "");
+    println!(
+        "  --{:<22} {:<13} print only the plan's summary",
+        "summary", ""
+    );
+    println!("\nExit status: 0 planned; 2 invalid input or option (one JSON line on stderr); 1 file error.");
+}
+
+fn to_json<T: serde::Serialize>(value: &T, pretty: bool) -> String {
+    let text = if pretty {
+        serde_json::to_string_pretty(value)
+    } else {
+        serde_json::to_string(value)
+    };
+    // ok: plan output holds only strings, integers and finite floats.
+    text.unwrap_or_default()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn flag_names_and_values() {
+        assert_eq!(camel_case("headland-passes"), "headlandPasses");
+        assert_eq!(kebab_case("minSwathLength"), "min-swath-length");
+        assert_eq!(flag_value("6"), Value::from(6));
+        assert_eq!(flag_value("4.95"), Value::from(4.95));
+        assert_eq!(flag_value("metric"), Value::from("metric"));
+        assert_eq!(flag_value("[[10,20]]"), serde_json::json!([[10, 20]]));
+    }
+}

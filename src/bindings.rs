@@ -1,0 +1,112 @@
+//! The JavaScript API of the WebAssembly package. All wasm-bindgen code lives here; the planner
+//! itself knows nothing of JavaScript.
+//!
+//! ```js
+//! import init, { plan } from "furrow";
+//! await init();
+//! const result = plan(fieldGeoJson, { width: 6, headlandPasses: 2 });
+//! ```
+//!
+//! Errors are thrown as `Error` objects with `name` `"FurrowError"` and a stable `code`, plus
+//! `feature`, `ring`, `vertex` and `coordinate` where the problem has a place in the input.
+
+use crate::error::{ErrorCode, PlanError};
+use crate::field::{geojson, validate};
+use crate::options::PlanOptions;
+use crate::plan::plan_stages;
+use wasm_bindgen::prelude::*;
+use web_time::Instant;
+
+#[wasm_bindgen(typescript_custom_section)]
+const TYPESCRIPT: &'static str = include_str!("bindings.d.ts");
+
+/// Installs the panic hook, so that a bug shows its message in the console.
+#[wasm_bindgen(start, skip_typescript)]
+fn start() {
+    console_error_panic_hook::set_once();
+}
+
+/// Plans a field. `field` is GeoJSON (an object, or its text); `options` may be left out.
+/// Returns the plan as a GeoJSON FeatureCollection with `summary` and `warnings`.
+/// (Its TypeScript declaration, with `options` optional, is in `bindings.d.ts`.)
+#[wasm_bindgen(js_name = plan, skip_typescript)]
+pub fn plan_js(field: JsValue, options: JsValue) -> Result<JsValue, JsValue> {
+    let started = Instant::now();
+    let options = read_options(options).map_err(|e| to_js_error(&e))?;
+    let input = match field.as_string() {
+        Some(text) => geojson::parse_str(&text),
+        None => geojson::parse_from(serde_wasm_bindgen::Deserializer::from(field)),
+    }
+    .map_err(|e| to_js_error(&e))?;
+    let (field, warnings) =
+        validate::field_from_input(input, options.coordinates).map_err(|e| to_js_error(&e))?;
+    let mut plan = plan_stages(field, &options, warnings).map_err(|e| to_js_error(&e))?;
+    plan.summary.planning_ms = started.elapsed().as_secs_f64() * 1000.0;
+    // One string and the engine's JSON.parse are much cheaper than building the object
+    // property by property across the boundary.
+    let text = serde_json::to_string(&plan.to_geojson()).map_err(|e| {
+        to_js_error(&PlanError::new(
+            ErrorCode::Internal,
+            format!("the plan could not be written: {e}"),
+        ))
+    })?;
+    js_sys::JSON::parse(&text)
+}
+
+/// The default value of every option.
+#[wasm_bindgen(js_name = defaultOptions, unchecked_return_type = "Required<PlanOptions>")]
+pub fn default_options() -> Result<JsValue, JsValue> {
+    let text = serde_json::to_string(&PlanOptions::default())
+        .map_err(|e| JsValue::from_str(&e.to_string()))?;
+    js_sys::JSON::parse(&text)
+}
+
+/// The version of the planner.
+#[wasm_bindgen]
+pub fn version() -> String {
+    env!("CARGO_PKG_VERSION").to_string()
+}
+
+fn read_options(options: JsValue) -> Result<PlanOptions, PlanError> {
+    if options.is_undefined() || options.is_null() {
+        return Ok(PlanOptions::default());
+    }
+    // Through JSON text, so that unknown keys (typos) are refused exactly as on the command line;
+    // serde-wasm-bindgen only looks up the keys it knows.
+    let text = js_sys::JSON::stringify(&options)
+        .ok()
+        .and_then(|s| s.as_string())
+        .ok_or_else(|| {
+            PlanError::new(
+                ErrorCode::InvalidOption,
+                "options must be an object of plain values",
+            )
+        })?;
+    PlanOptions::from_json_str(&text)
+}
+
+/// A `PlanError` as a JavaScript `Error` with `code` and the location fields.
+fn to_js_error(e: &PlanError) -> JsValue {
+    let error = js_sys::Error::new(&e.message);
+    error.set_name("FurrowError");
+    let object: &JsValue = error.as_ref();
+    let set = |key: &str, value: JsValue| {
+        // ok to ignore: setting a property on a fresh Error object cannot fail.
+        let _ = js_sys::Reflect::set(object, &JsValue::from_str(key), &value);
+    };
+    set("code", JsValue::from_str(e.code.as_str()));
+    if let Some(f) = e.feature {
+        set("feature", JsValue::from(f as u32));
+    }
+    if let Some(r) = e.ring {
+        set("ring", JsValue::from(r as u32));
+    }
+    if let Some(v) = e.vertex {
+        set("vertex", JsValue::from(v as u32));
+    }
+    if let Some([x, y]) = e.coordinate {
+        let array = js_sys::Array::of2(&JsValue::from(x), &JsValue::from(y));
+        set("coordinate", array.into());
+    }
+    error.into()
+}

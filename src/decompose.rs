@@ -1,0 +1,194 @@
+//! Blocks: groups of neighbouring swaths worked one after the other, turning in the headland.
+//!
+//! Where an obstacle or a bay interrupts the swath lines, swaths on one side of it cannot be
+//! joined to swaths on the other by a turn at their ends. This stage clusters swaths into blocks
+//! as Zhou et al. (2.3) do after their boustrophedon decomposition: walking across the field line
+//! by line, a swath continues the block of the swath next to it on the previous line when each
+//! is the other's only overlapping neighbour; a split or a merge of pieces starts new blocks.
+//! Each block's outline is the strip its swaths cover.
+
+use crate::field::ring::clean_ring;
+use crate::swath::{Swath, Swaths};
+use geo::{LineString, Polygon};
+
+/// A block: swaths on consecutive lines, each overlapping the next along the line.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Block {
+    /// Index of the block.
+    pub index: usize,
+    /// Indices of its swaths (into [`Swaths::swaths`]), one per line, in line order.
+    pub swaths: Vec<usize>,
+    /// The area its swaths cover: a staircase outline of their strips, counter-clockwise.
+    pub outline: Polygon,
+    /// The swath direction of the block, compass radians in `[0, π)`.
+    pub bearing: f64,
+}
+
+/// The blocks of a plan.
+#[derive(Debug, Clone, Default)]
+pub struct Blocks {
+    /// The blocks, in the order they were found across the field.
+    pub blocks: Vec<Block>,
+}
+
+/// Clusters swaths into blocks.
+///
+/// ```
+/// use furrow::decompose::cluster_swaths;
+/// use furrow::swath::generate;
+/// use geo::{polygon, MultiPolygon};
+///
+/// // A 60 x 100 field with a pond in the middle of it: the lines through the pond are split,
+/// // giving a block below the pond and one above it, between the blocks at the sides.
+/// let field = polygon!(
+///     exterior: [(x: 0., y: 0.), (x: 60., y: 0.), (x: 60., y: 100.), (x: 0., y: 100.)],
+///     interiors: [[(x: 20., y: 40.), (x: 40., y: 40.), (x: 40., y: 60.), (x: 20., y: 60.)]],
+/// );
+/// let swaths = generate(&MultiPolygon::new(vec![field]), 0.0, 6.0, 6.0);
+/// let blocks = cluster_swaths(&swaths);
+/// assert_eq!(blocks.blocks.len(), 4);
+/// let total: usize = blocks.blocks.iter().map(|b| b.swaths.len()).sum();
+/// assert_eq!(total, swaths.swaths.len());
+/// ```
+pub fn cluster_swaths(swaths: &Swaths) -> Blocks {
+    let s = &swaths.swaths;
+    // Swaths are ordered by line; find where each line's run starts.
+    let mut runs: Vec<(usize, std::ops::Range<usize>)> = Vec::new();
+    let mut i = 0;
+    while i < s.len() {
+        let line = s[i].line_index;
+        let start = i;
+        while i < s.len() && s[i].line_index == line {
+            i += 1;
+        }
+        runs.push((line, start..i));
+    }
+
+    let mut block_of: Vec<usize> = vec![usize::MAX; s.len()];
+    let mut members: Vec<Vec<usize>> = Vec::new();
+    for (r, (line, range)) in runs.iter().enumerate() {
+        let prev = r
+            .checked_sub(1)
+            .map(|p| &runs[p])
+            .filter(|(pl, _)| pl + 1 == *line);
+        for j in range.clone() {
+            let continues = prev.and_then(|(_, prange)| {
+                let mut over = prange.clone().filter(|&k| overlaps(&s[k], &s[j]));
+                let k = over.next()?;
+                if over.next().is_some() {
+                    return None;
+                }
+                // k must overlap only j on this line too.
+                let mut back = range.clone().filter(|&m| overlaps(&s[k], &s[m]));
+                let only = back.next() == Some(j) && back.next().is_none();
+                only.then_some(k)
+            });
+            match continues {
+                Some(k) => {
+                    let b = block_of[k];
+                    block_of[j] = b;
+                    members[b].push(j);
+                }
+                None => {
+                    block_of[j] = members.len();
+                    members.push(vec![j]);
+                }
+            }
+        }
+    }
+
+    let blocks = members
+        .into_iter()
+        .enumerate()
+        .map(|(index, ids)| Block {
+            index,
+            outline: outline(swaths, &ids),
+            swaths: ids,
+            bearing: swaths.bearing,
+        })
+        .collect();
+    Blocks { blocks }
+}
+
+/// Whether two swaths on neighbouring lines overlap along the line.
+fn overlaps(a: &Swath, b: &Swath) -> bool {
+    a.along.0 < b.along.1 && b.along.0 < a.along.1
+}
+
+/// The staircase outline of a block's strips: each strip reaches half a width beyond its outer
+/// lines and halfway to its neighbours between them.
+fn outline(swaths: &Swaths, ids: &[usize]) -> Polygon {
+    let s = &swaths.swaths;
+    let half = swaths.width / 2.0;
+    let n = ids.len();
+    // Strip edges across the field: before the first line, between lines, after the last.
+    let edge = |k: usize| -> f64 {
+        if k == 0 {
+            s[ids[0]].across - half
+        } else if k == n {
+            s[ids[n - 1]].across + half
+        } else {
+            (s[ids[k - 1]].across + s[ids[k]].across) / 2.0
+        }
+    };
+    let f = &swaths.frame;
+    let mut pts = Vec::with_capacity(4 * n + 1);
+    // Up the start side, then back down the end side.
+    for (k, &id) in ids.iter().enumerate() {
+        pts.push(f.point(edge(k), s[id].along.0));
+        pts.push(f.point(edge(k + 1), s[id].along.0));
+    }
+    for (k, &id) in ids.iter().enumerate().rev() {
+        pts.push(f.point(edge(k + 1), s[id].along.1));
+        pts.push(f.point(edge(k), s[id].along.1));
+    }
+    // Equal neighbours leave zero-height steps: drop those vertices.
+    let (pts, _) = clean_ring(&pts);
+    // (across, along) is a right-handed frame like (east, north): the outline runs counter-clockwise.
+    let mut ring = LineString::new(pts);
+    ring.close();
+    Polygon::new(ring, vec![])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::swath::generate;
+    use geo::{polygon, Area, MultiPolygon};
+
+    #[test]
+    fn a_convex_field_is_one_block() {
+        let field = polygon![(x: 0., y: 0.), (x: 100., y: 0.), (x: 80., y: 60.), (x: 10., y: 50.)];
+        let swaths = generate(&MultiPolygon::new(vec![field]), 0.3, 6.0, 6.0);
+        let blocks = cluster_swaths(&swaths);
+        assert_eq!(blocks.blocks.len(), 1);
+        assert_eq!(blocks.blocks[0].swaths.len(), swaths.swaths.len());
+    }
+
+    #[test]
+    fn outline_covers_the_strips() {
+        let field = polygon![(x: 0., y: 0.), (x: 30., y: 0.), (x: 30., y: 100.), (x: 0., y: 100.)];
+        let swaths = generate(&MultiPolygon::new(vec![field]), 0.0, 6.0, 6.0);
+        let blocks = cluster_swaths(&swaths);
+        let b = &blocks.blocks[0];
+        assert!((b.outline.unsigned_area() - 3000.0).abs() < 1e-6);
+        assert!(b.outline.signed_area() > 0.0, "counter-clockwise");
+    }
+
+    #[test]
+    fn a_u_shaped_field_gives_three_blocks() {
+        // A U open to the north: lines running east cross both arms above the base.
+        let u = polygon![
+            (x: 0., y: 0.), (x: 90., y: 0.), (x: 90., y: 90.), (x: 60., y: 90.),
+            (x: 60., y: 30.), (x: 30., y: 30.), (x: 30., y: 90.), (x: 0., y: 90.)
+        ];
+        let swaths = generate(
+            &MultiPolygon::new(vec![u]),
+            std::f64::consts::FRAC_PI_2,
+            6.0,
+            6.0,
+        );
+        let blocks = cluster_swaths(&swaths);
+        assert_eq!(blocks.blocks.len(), 3);
+    }
+}

@@ -1,0 +1,252 @@
+//! Errors and warnings: what went wrong with an input or a plan, with a stable code.
+//!
+//! Every public function of furrow returns `Result<_, PlanError>`. The `code` is stable and
+//! machine-readable (it crosses into JavaScript as `error.code`); the message is for people.
+//! Where the problem sits in the input, the error says which feature (its index in the input's
+//! `features`), which vertex of which ring, and the coordinate, in the input's own coordinates.
+
+use serde::Serialize;
+use std::fmt;
+
+/// The stable code of a [`PlanError`]. The README's error reference lists each one.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
+#[serde(rename_all = "snake_case")]
+#[non_exhaustive]
+pub enum ErrorCode {
+    /// The input is not JSON (truncated, or a number such as `NaN` that JSON does not have).
+    InvalidJson,
+    /// The input is JSON but not the GeoJSON the planner reads.
+    InvalidGeojson,
+    /// No feature has `role: "boundary"` and no single polygon could stand for the field.
+    NoBoundary,
+    /// More than one boundary: several polygons without roles, or several `boundary` features.
+    AmbiguousBoundary,
+    /// A geometry type the role cannot have (e.g. a LineString as boundary).
+    UnsupportedGeometry,
+    /// A coordinate is NaN or infinite.
+    NonFiniteCoordinate,
+    /// Longitude outside [-180, 180] or latitude outside [-90, 90] (or too near a pole to farm).
+    CoordinateOutOfRange,
+    /// A ring has fewer than 3 distinct points.
+    TooFewPoints,
+    /// A ring encloses no area (collinear points) or an area too small to plan.
+    ZeroArea,
+    /// A ring crosses itself; `coordinate` is the crossing point.
+    SelfIntersection,
+    /// An obstacle does not lie inside the field boundary.
+    ObstacleOutsideField,
+    /// An interior ring (hole) of the boundary crosses the exterior ring.
+    HoleCrossingBoundary,
+    /// An option is unknown or has the wrong type.
+    InvalidOption,
+    /// An option's value is outside the range the planner accepts.
+    OptionOutOfRange,
+    /// The input is larger than the planner accepts (vertices or bytes).
+    InputTooLarge,
+    /// The headland passes leave no inner field to put swaths in.
+    HeadlandConsumesField,
+    /// A failure inside the planner that input should never cause; please report it.
+    Internal,
+}
+
+impl ErrorCode {
+    /// The code as it appears in JSON and in JavaScript's `error.code`.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            ErrorCode::InvalidJson => "invalid_json",
+            ErrorCode::InvalidGeojson => "invalid_geojson",
+            ErrorCode::NoBoundary => "no_boundary",
+            ErrorCode::AmbiguousBoundary => "ambiguous_boundary",
+            ErrorCode::UnsupportedGeometry => "unsupported_geometry",
+            ErrorCode::NonFiniteCoordinate => "non_finite_coordinate",
+            ErrorCode::CoordinateOutOfRange => "coordinate_out_of_range",
+            ErrorCode::TooFewPoints => "too_few_points",
+            ErrorCode::ZeroArea => "zero_area",
+            ErrorCode::SelfIntersection => "self_intersection",
+            ErrorCode::ObstacleOutsideField => "obstacle_outside_field",
+            ErrorCode::HoleCrossingBoundary => "hole_crossing_boundary",
+            ErrorCode::InvalidOption => "invalid_option",
+            ErrorCode::OptionOutOfRange => "option_out_of_range",
+            ErrorCode::InputTooLarge => "input_too_large",
+            ErrorCode::HeadlandConsumesField => "headland_consumes_field",
+            ErrorCode::Internal => "internal",
+        }
+    }
+}
+
+impl fmt::Display for ErrorCode {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.as_str())
+    }
+}
+
+/// Why a field could not be planned.
+///
+/// ```
+/// use furrow::{plan_geojson, ErrorCode, PlanOptions};
+///
+/// let err = plan_geojson("{\"type\": \"FeatureCollection\"", &PlanOptions::default()).unwrap_err();
+/// assert_eq!(err.code, ErrorCode::InvalidJson);
+/// ```
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct PlanError {
+    /// What kind of problem this is.
+    pub code: ErrorCode,
+    /// A sentence for the user, naming the problem and where it is.
+    pub message: String,
+    /// Index of the offending feature in the input's `features` (0 for a lone Feature or geometry).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub feature: Option<usize>,
+    /// Index of the offending ring in the feature's polygon (0 = exterior).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub ring: Option<usize>,
+    /// Index of the offending vertex in that ring.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub vertex: Option<usize>,
+    /// The offending position in the input's coordinates (longitude, latitude for WGS84).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub coordinate: Option<[f64; 2]>,
+}
+
+impl PlanError {
+    /// An error with a code and a message and no location.
+    pub fn new(code: ErrorCode, message: impl Into<String>) -> Self {
+        PlanError {
+            code,
+            message: message.into(),
+            feature: None,
+            ring: None,
+            vertex: None,
+            coordinate: None,
+        }
+    }
+
+    /// The same error, located at a feature of the input.
+    pub fn at_feature(mut self, feature: usize) -> Self {
+        self.feature = Some(feature);
+        self
+    }
+
+    /// The same error, located at a ring of the feature's polygon.
+    pub fn at_ring(mut self, ring: usize) -> Self {
+        self.ring = Some(ring);
+        self
+    }
+
+    /// The same error, located at a vertex of the ring.
+    pub fn at_vertex(mut self, vertex: usize) -> Self {
+        self.vertex = Some(vertex);
+        self
+    }
+
+    /// The same error, located at a coordinate (in the input's coordinates).
+    pub fn at_coordinate(mut self, coordinate: [f64; 2]) -> Self {
+        self.coordinate = Some(coordinate);
+        self
+    }
+
+    /// The error as one line of JSON: `{"code": ..., "message": ..., ...}`.
+    pub fn to_json(&self) -> String {
+        // ok: serialising a struct of strings, numbers and options cannot fail.
+        serde_json::to_string(self)
+            .unwrap_or_else(|_| format!("{{\"code\":\"{}\",\"message\":\"\"}}", self.code.as_str()))
+    }
+}
+
+impl fmt::Display for PlanError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}: {}", self.code, self.message)
+    }
+}
+
+impl std::error::Error for PlanError {}
+
+/// The stable code of a [`Warning`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
+#[serde(rename_all = "snake_case")]
+#[non_exhaustive]
+pub enum WarningCode {
+    /// A ring's last point did not repeat its first; the ring was closed.
+    RingClosed,
+    /// Consecutive repeated vertices were removed.
+    RepeatedVertices,
+    /// Vertices lying on the straight line between their neighbours were removed.
+    CollinearVertices,
+    /// Spikes (a vertex where the outline goes out and straight back) were removed.
+    SpikesRemoved,
+    /// A ring ran the wrong way round (exterior clockwise or hole counter-clockwise) and was turned.
+    RingReoriented,
+    /// An obstacle reached over the field boundary; only its part inside the field is kept.
+    ObstacleClipped,
+    /// Overlapping obstacles were merged into one.
+    ObstaclesMerged,
+    /// A prohibited region reached over the field boundary; only its part inside is kept.
+    ProhibitedClipped,
+    /// Features the planner does not use (unknown role, not a polygon) were ignored.
+    IgnoredFeature,
+    /// Swath pieces shorter than the minimum swath length were dropped.
+    ShortSwathsDropped,
+    /// Blocks are joined by straight connections that may cross crop or obstacles.
+    StraightConnections,
+}
+
+/// Something the planner repaired or simplified, or a property of the plan the user should know.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Warning {
+    /// What kind of warning this is.
+    pub code: WarningCode,
+    /// A sentence for the user.
+    pub message: String,
+    /// Index of the feature concerned in the input's `features`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub feature: Option<usize>,
+}
+
+impl Warning {
+    /// A warning about the plan or the input as a whole.
+    pub fn new(code: WarningCode, message: impl Into<String>) -> Self {
+        Warning {
+            code,
+            message: message.into(),
+            feature: None,
+        }
+    }
+
+    /// A warning about one feature of the input.
+    pub fn at_feature(mut self, feature: usize) -> Self {
+        self.feature = Some(feature);
+        self
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn codes_serialise_as_their_stable_strings() {
+        for code in [
+            ErrorCode::InvalidJson,
+            ErrorCode::SelfIntersection,
+            ErrorCode::HeadlandConsumesField,
+            ErrorCode::Internal,
+        ] {
+            let json = serde_json::to_string(&code).unwrap();
+            assert_eq!(json, format!("\"{}\"", code.as_str()));
+        }
+    }
+
+    #[test]
+    fn error_json_has_code_message_and_location() {
+        let err = PlanError::new(ErrorCode::SelfIntersection, "boundary crosses itself")
+            .at_feature(0)
+            .at_ring(0)
+            .at_coordinate([24.0, 60.0]);
+        let v: serde_json::Value = serde_json::from_str(&err.to_json()).unwrap();
+        assert_eq!(v["code"], "self_intersection");
+        assert_eq!(v["message"], "boundary crosses itself");
+        assert_eq!(v["feature"], 0);
+        assert_eq!(v["coordinate"][1], 60.0);
+        assert!(v.get("vertex").is_none());
+    }
+}

@@ -1,0 +1,308 @@
+//! Cleaning and checking one ring of a polygon in local metres.
+//!
+//! A ring drawn on a tablet or recorded by GNSS comes with the last point missing or repeated,
+//! doubled vertices, vertices on a straight edge and spikes (a vertex where the line goes out and
+//! straight back). [`clean_ring`] removes those and says what it did; [`find_self_intersection`]
+//! finds where a ring crosses or touches itself.
+
+use geo::algorithm::sweep::{Cross, Intersections};
+use geo::{Coord, Line, LineIntersection};
+
+/// Vertices closer than this (metres) are the same vertex.
+pub const SAME_POINT_M: f64 = 1e-3;
+/// A vertex this close (metres) to the straight line through its neighbours is on that line.
+pub const COLLINEAR_M: f64 = 1e-3;
+/// A vertex whose two edges meet at an angle below this (radians) is a spike.
+pub const SPIKE_ANGLE: f64 = 1e-2;
+
+/// What [`clean_ring`] repaired.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct RingRepairs {
+    /// Distinct vertices before collinear vertices and spikes were removed: a ring that had 3 or
+    /// more but is left with fewer encloses no area.
+    pub distinct: usize,
+    /// The ring's last point did not repeat its first.
+    pub was_open: bool,
+    /// Repeated consecutive vertices removed.
+    pub repeated: usize,
+    /// Vertices removed because they lay on the straight line through their neighbours.
+    pub collinear: usize,
+    /// Spike vertices removed.
+    pub spikes: usize,
+}
+
+/// Removes the closing point, repeated vertices, collinear vertices and spikes from a ring.
+///
+/// Returns the open ring (first point not repeated at the end) and what was repaired. The
+/// result may have fewer than 3 points; the caller decides what that means.
+///
+/// ```
+/// use furrow::field::ring::clean_ring;
+/// use geo::coord;
+///
+/// let ring = vec![
+///     coord! { x: 0.0, y: 0.0 },
+///     coord! { x: 5.0, y: 0.0 },  // on the edge from (0,0) to (10,0)
+///     coord! { x: 10.0, y: 0.0 },
+///     coord! { x: 10.0, y: 0.0 }, // repeated
+///     coord! { x: 10.0, y: 10.0 },
+///     coord! { x: 0.0, y: 10.0 },
+/// ];
+/// let (clean, repairs) = clean_ring(&ring);
+/// assert_eq!(clean.len(), 4);
+/// assert!(repairs.was_open);
+/// assert_eq!((repairs.repeated, repairs.collinear), (1, 1));
+/// ```
+pub fn clean_ring(ring: &[Coord]) -> (Vec<Coord>, RingRepairs) {
+    let mut repairs = RingRepairs::default();
+    let mut pts: Vec<Coord> = Vec::with_capacity(ring.len());
+    for &p in ring {
+        match pts.last() {
+            Some(&q) if distance(p, q) < SAME_POINT_M => repairs.repeated += 1,
+            _ => pts.push(p),
+        }
+    }
+    // The closing point: a GeoJSON ring repeats its first point; one that does not was open.
+    if pts.len() >= 2 && distance(pts[0], pts[pts.len() - 1]) < SAME_POINT_M {
+        pts.pop();
+    } else if !pts.is_empty() {
+        repairs.was_open = true;
+    }
+    repairs.distinct = pts.len();
+    // Drop collinear vertices and spikes until none is left; each removal may expose another.
+    loop {
+        let n = pts.len();
+        if n < 3 {
+            break;
+        }
+        let mut keep = Vec::with_capacity(n);
+        let mut removed = false;
+        for i in 0..n {
+            let prev = match keep.last() {
+                Some(&p) => p,
+                None => pts[(i + n - 1) % n],
+            };
+            let v = pts[i];
+            let next = pts[(i + 1) % n];
+            match classify(prev, v, next) {
+                VertexKind::Corner => keep.push(v),
+                VertexKind::Collinear => {
+                    repairs.collinear += 1;
+                    removed = true;
+                }
+                VertexKind::Spike => {
+                    repairs.spikes += 1;
+                    removed = true;
+                }
+                VertexKind::Repeated => {
+                    repairs.repeated += 1;
+                    removed = true;
+                }
+            }
+        }
+        pts = keep;
+        if !removed {
+            break;
+        }
+    }
+    (pts, repairs)
+}
+
+enum VertexKind {
+    Corner,
+    Collinear,
+    Spike,
+    Repeated,
+}
+
+fn classify(prev: Coord, v: Coord, next: Coord) -> VertexKind {
+    let a = prev - v;
+    let b = next - v;
+    let (la, lb) = (a.x.hypot(a.y), b.x.hypot(b.y));
+    if la < SAME_POINT_M || lb < SAME_POINT_M {
+        return VertexKind::Repeated;
+    }
+    let cross = a.x * b.y - a.y * b.x;
+    let dot = a.x * b.x + a.y * b.y;
+    // Angle between the two edges as seen from v: pi on a straight edge, near 0 at a spike.
+    let angle = cross.abs().atan2(dot);
+    if angle < SPIKE_ANGLE {
+        return VertexKind::Spike;
+    }
+    let base = next - prev;
+    let base_len = base.x.hypot(base.y);
+    if base_len > 0.0 && dot < 0.0 {
+        // Height of v over the line prev-next.
+        let height = ((v.x - prev.x) * base.y - (v.y - prev.y) * base.x).abs() / base_len;
+        if height < COLLINEAR_M {
+            return VertexKind::Collinear;
+        }
+    }
+    VertexKind::Corner
+}
+
+#[inline]
+fn distance(a: Coord, b: Coord) -> f64 {
+    (a.x - b.x).hypot(a.y - b.y)
+}
+
+/// Twice the signed area of an open ring: positive when counter-clockwise.
+pub fn signed_area2(ring: &[Coord]) -> f64 {
+    let n = ring.len();
+    (0..n)
+        .map(|i| {
+            let (p, q) = (ring[i], ring[(i + 1) % n]);
+            p.x * q.y - q.x * p.y
+        })
+        .sum()
+}
+
+/// An edge of a ring, with its index: edge `i` runs from vertex `i` to vertex `i + 1`.
+#[derive(Debug, Clone, Copy)]
+struct Edge {
+    index: usize,
+    line: Line,
+}
+
+impl Cross for Edge {
+    type Scalar = f64;
+    fn line(&self) -> Line {
+        self.line
+    }
+}
+
+/// Finds a point where an open ring crosses or touches itself, if there is one.
+///
+/// Returns the point and the indices of the two edges. Neighbouring edges share their common
+/// vertex and are not reported for it.
+///
+/// ```
+/// use furrow::field::ring::find_self_intersection;
+/// use geo::coord;
+///
+/// let bowtie = [
+///     coord! { x: 0.0, y: 0.0 },
+///     coord! { x: 10.0, y: 10.0 },
+///     coord! { x: 10.0, y: 0.0 },
+///     coord! { x: 0.0, y: 10.0 },
+/// ];
+/// let (p, _, _) = find_self_intersection(&bowtie).unwrap();
+/// assert!((p.x - 5.0).abs() < 1e-9 && (p.y - 5.0).abs() < 1e-9);
+/// ```
+pub fn find_self_intersection(ring: &[Coord]) -> Option<(Coord, usize, usize)> {
+    let n = ring.len();
+    if n < 3 {
+        return None;
+    }
+    let edges = (0..n).map(|i| Edge {
+        index: i,
+        line: Line::new(ring[i], ring[(i + 1) % n]),
+    });
+    for (a, b, hit) in Intersections::from_iter(edges) {
+        let (i, j) = (a.index.min(b.index), a.index.max(b.index));
+        let neighbours = j == i + 1 || (i == 0 && j == n - 1);
+        match hit {
+            LineIntersection::SinglePoint { intersection, .. } => {
+                if neighbours {
+                    // Neighbours meet at their shared vertex; anything else is an overlap.
+                    let shared = if j == i + 1 { ring[j] } else { ring[0] };
+                    if distance(intersection, shared) <= SAME_POINT_M {
+                        continue;
+                    }
+                }
+                return Some((intersection, i, j));
+            }
+            LineIntersection::Collinear { intersection } => {
+                return Some((intersection.start, i, j));
+            }
+        }
+    }
+    None
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use geo::coord;
+
+    fn square() -> Vec<Coord> {
+        vec![
+            coord! { x: 0.0, y: 0.0 },
+            coord! { x: 10.0, y: 0.0 },
+            coord! { x: 10.0, y: 10.0 },
+            coord! { x: 0.0, y: 10.0 },
+        ]
+    }
+
+    #[test]
+    fn closed_clean_ring_is_unchanged() {
+        let mut ring = square();
+        ring.push(ring[0]);
+        let (clean, repairs) = clean_ring(&ring);
+        assert_eq!(clean, square());
+        assert_eq!(
+            repairs,
+            RingRepairs {
+                distinct: 4,
+                ..Default::default()
+            }
+        );
+    }
+
+    #[test]
+    fn removes_a_spike() {
+        // Up the east side, out to (20, 5) and straight back, then on up.
+        let ring = vec![
+            coord! { x: 0.0, y: 0.0 },
+            coord! { x: 10.0, y: 0.0 },
+            coord! { x: 10.0, y: 5.0 },
+            coord! { x: 20.0, y: 5.0 },
+            coord! { x: 10.0, y: 5.0001 },
+            coord! { x: 10.0, y: 10.0 },
+            coord! { x: 0.0, y: 10.0 },
+        ];
+        let (clean, repairs) = clean_ring(&ring);
+        assert_eq!(repairs.spikes, 1, "{repairs:?}");
+        assert_eq!(clean, square());
+    }
+
+    #[test]
+    fn collinear_points_collapse_to_nothing() {
+        let ring = vec![
+            coord! { x: 0.0, y: 0.0 },
+            coord! { x: 10.0, y: 0.0 },
+            coord! { x: 20.0, y: 0.0 },
+            coord! { x: 0.0, y: 0.0 },
+        ];
+        let (clean, _) = clean_ring(&ring);
+        assert!(clean.len() < 3, "{clean:?}");
+    }
+
+    #[test]
+    fn orientation_sign() {
+        assert!(signed_area2(&square()) > 0.0);
+        let mut cw = square();
+        cw.reverse();
+        assert!(signed_area2(&cw) < 0.0);
+    }
+
+    #[test]
+    fn simple_ring_has_no_self_intersection() {
+        assert!(find_self_intersection(&square()).is_none());
+    }
+
+    #[test]
+    fn ring_touching_itself_at_a_vertex_is_found() {
+        // An hourglass pinched at (5, 5): the fourth vertex touches the first edge pair's corner.
+        let ring = vec![
+            coord! { x: 0.0, y: 0.0 },
+            coord! { x: 10.0, y: 0.0 },
+            coord! { x: 5.0, y: 5.0 },
+            coord! { x: 10.0, y: 10.0 },
+            coord! { x: 0.0, y: 10.0 },
+            coord! { x: 5.0, y: 5.0 },
+        ];
+        let (p, _, _) = find_self_intersection(&ring).unwrap();
+        assert!((p.x - 5.0).abs() < 1e-9 && (p.y - 5.0).abs() < 1e-9);
+    }
+}

@@ -1,0 +1,56 @@
+//! # furrow
+//!
+//! Coverage path planning for farm machines: from a field boundary drawn or recorded in GeoJSON,
+//! the headland passes, swaths, blocks, route and path a tractor drives to work the whole field.
+//!
+//! The pipeline, one module per stage:
+//!
+//! 1. [`field`]: read GeoJSON, project to local metres, repair and validate;
+//! 2. [`headland`]: headland passes around the boundary and the inner field they leave;
+//! 3. [`direction`]: the driving direction of the swaths;
+//! 4. [`swath`]: parallel swaths one working width apart covering the inner field;
+//! 5. [`decompose`]: blocks of swaths that can be worked one after the other;
+//! 6. [`route`]: the order of blocks, swaths and headland passes;
+//! 7. [`path`]: the continuous path, with turns and connections;
+//! 8. [`metrics`]: distances, areas and counts;
+//! 9. [`tracks`]: the lanes the plan leaves, for driving on existing tracks later.
+//!
+//! [`plan()`] runs them in order; [`output`] writes the result as GeoJSON in the input's
+//! coordinates. Inside, all lengths are metres and all angles radians, with bearings measured
+//! clockwise from north; the API speaks metres and compass degrees.
+//!
+//! ```
+//! use furrow::{plan_geojson, PlanOptions};
+//!
+//! let field = r#"{"type": "Polygon", "coordinates": [[[24.05, 60.25], [24.056, 60.25],
+//!     [24.056, 60.252], [24.05, 60.252], [24.05, 60.25]]]}"#;
+//! let options = PlanOptions { width: 6.0, headland_passes: 2, ..Default::default() };
+//! let plan = plan_geojson(field, &options).unwrap();
+//! assert!(plan.summary.swath_count > 0);
+//! let geojson: serde_json::Value = serde_json::from_str(&plan.to_geojson_string()).unwrap();
+//! assert_eq!(geojson["type"], "FeatureCollection");
+//! ```
+
+#![warn(missing_docs)]
+
+pub mod decompose;
+pub mod direction;
+pub mod error;
+pub mod field;
+pub mod geometry;
+pub mod headland;
+pub mod metrics;
+pub mod options;
+pub mod output;
+pub mod path;
+pub mod plan;
+pub mod route;
+pub mod swath;
+pub mod tracks;
+
+#[cfg(target_arch = "wasm32")]
+mod bindings;
+
+pub use error::{ErrorCode, PlanError, Warning, WarningCode};
+pub use options::PlanOptions;
+pub use plan::{plan, plan_geojson, Plan};

@@ -1,0 +1,200 @@
+//! The planner's options: one struct shared by the Rust API, the JavaScript API (camelCase
+//! keys) and the command-line planner (kebab-case flags), with a default for every option.
+
+use crate::error::{ErrorCode, PlanError};
+use crate::field::Coordinates;
+use serde::{Deserialize, Serialize};
+
+/// How the field is to be planned. Every option has a default; JavaScript passes them as an object
+/// with camelCase keys (`{ width: 6, headlandPasses: 2 }`), the CLI as kebab-case flags
+/// (`--headland-passes 2`).
+///
+/// ```
+/// use furrow::PlanOptions;
+///
+/// let options: PlanOptions = serde_json::from_str(r#"{"width": 4.5, "bearing": 30}"#).unwrap();
+/// assert_eq!(options.width, 4.5);
+/// assert_eq!(options.bearing_deg, Some(30.0));
+/// assert_eq!(options.headland_passes, PlanOptions::default().headland_passes);
+/// options.validate().unwrap();
+/// ```
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "camelCase", default, deny_unknown_fields)]
+pub struct PlanOptions {
+    /// Working width of the implement, metres: the distance between neighbouring swaths and the
+    /// width of each headland pass.
+    pub width: f64,
+    /// Number of headland passes driven around the field boundary.
+    pub headland_passes: u32,
+    /// Minimum turning radius of the machine, metres.
+    pub turn_radius: f64,
+    /// Driving direction of the swaths as a compass bearing in degrees (0 = north, clockwise; a
+    /// bearing and its reverse are the same direction). `None` follows the longest boundary edge.
+    #[serde(rename = "bearing")]
+    pub bearing_deg: Option<f64>,
+    /// Swath pieces shorter than this (metres) are not worked as swaths; `None` means one working
+    /// width. The headland passes cover what they leave.
+    pub min_swath_length: Option<f64>,
+    /// The coordinates of the input and of the plan: WGS84 longitude/latitude, or local metres.
+    pub coordinates: Coordinates,
+}
+
+impl Default for PlanOptions {
+    fn default() -> Self {
+        PlanOptions {
+            width: 6.0,
+            headland_passes: 2,
+            turn_radius: 8.0,
+            bearing_deg: None,
+            min_swath_length: None,
+            coordinates: Coordinates::Wgs84,
+        }
+    }
+}
+
+/// Each option's key (as in JavaScript), its unit or type, and what it does: the help of the
+/// command-line planner. A test checks that it lists exactly the fields of [`PlanOptions`].
+pub const OPTION_DOCS: &[(&str, &str, &str)] = &[
+    (
+        "width",
+        "metres",
+        "working width of the implement: swath spacing and headland pass width (default 6)",
+    ),
+    (
+        "headlandPasses",
+        "count",
+        "number of headland passes around the field (default 2)",
+    ),
+    (
+        "turnRadius",
+        "metres",
+        "minimum turning radius of the machine (default 8)",
+    ),
+    (
+        "bearing",
+        "degrees",
+        "driving direction as a compass bearing, 0 = north (default: along the longest boundary edge)",
+    ),
+    (
+        "minSwathLength",
+        "metres",
+        "swath pieces shorter than this are left to the headland (default: one working width)",
+    ),
+    (
+        "coordinates",
+        "wgs84|metric",
+        "coordinates of the input and the plan: longitude/latitude or local metres (default wgs84)",
+    ),
+];
+
+/// Largest working width accepted, metres.
+pub const MAX_WIDTH_M: f64 = 200.0;
+/// Smallest working width accepted, metres.
+pub const MIN_WIDTH_M: f64 = 0.1;
+/// Most headland passes accepted.
+pub const MAX_HEADLAND_PASSES: u32 = 50;
+/// Largest turning radius accepted, metres.
+pub const MAX_TURN_RADIUS_M: f64 = 200.0;
+
+impl PlanOptions {
+    /// Checks that every option is within the range the planner accepts.
+    pub fn validate(&self) -> Result<(), PlanError> {
+        let out_of_range = |name: &str, value: String, range: &str| {
+            Err(PlanError::new(
+                ErrorCode::OptionOutOfRange,
+                format!("option `{name}` is {value}; it must be {range}"),
+            ))
+        };
+        if !(self.width.is_finite() && (MIN_WIDTH_M..=MAX_WIDTH_M).contains(&self.width)) {
+            return out_of_range(
+                "width",
+                format!("{}", self.width),
+                &format!("between {MIN_WIDTH_M} and {MAX_WIDTH_M} metres"),
+            );
+        }
+        if self.headland_passes > MAX_HEADLAND_PASSES {
+            return out_of_range(
+                "headlandPasses",
+                self.headland_passes.to_string(),
+                &format!("at most {MAX_HEADLAND_PASSES}"),
+            );
+        }
+        if !(self.turn_radius.is_finite() && (0.0..=MAX_TURN_RADIUS_M).contains(&self.turn_radius))
+        {
+            return out_of_range(
+                "turnRadius",
+                format!("{}", self.turn_radius),
+                &format!("between 0 and {MAX_TURN_RADIUS_M} metres"),
+            );
+        }
+        if let Some(b) = self.bearing_deg {
+            if !b.is_finite() {
+                return out_of_range("bearing", format!("{b}"), "a finite number of degrees");
+            }
+        }
+        if let Some(m) = self.min_swath_length {
+            if !(m.is_finite() && m >= 0.0) {
+                return out_of_range("minSwathLength", format!("{m}"), "0 or more metres");
+            }
+        }
+        Ok(())
+    }
+
+    /// Reads options from JSON text (camelCase keys), e.g. from a command line or a file.
+    pub fn from_json_str(text: &str) -> Result<Self, PlanError> {
+        let options: PlanOptions = serde_json::from_str(text).map_err(|e| {
+            PlanError::new(ErrorCode::InvalidOption, format!("invalid options: {e}"))
+        })?;
+        options.validate()?;
+        Ok(options)
+    }
+
+    /// The minimum swath length in metres, with its default applied.
+    pub fn min_swath_length_m(&self) -> f64 {
+        self.min_swath_length.unwrap_or(self.width)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn docs_list_exactly_the_options() {
+        let v = serde_json::to_value(PlanOptions::default()).unwrap();
+        let mut keys: Vec<&str> = v.as_object().unwrap().keys().map(|k| k.as_str()).collect();
+        let mut documented: Vec<&str> = OPTION_DOCS.iter().map(|(k, _, _)| *k).collect();
+        keys.sort_unstable();
+        documented.sort_unstable();
+        assert_eq!(keys, documented);
+    }
+
+    #[test]
+    fn unknown_option_is_refused() {
+        let e = PlanOptions::from_json_str(r#"{"widht": 3}"#).unwrap_err();
+        assert_eq!(e.code, ErrorCode::InvalidOption);
+        assert!(e.message.contains("widht"), "{}", e.message);
+    }
+
+    #[test]
+    fn out_of_range_options_are_refused() {
+        for text in [
+            r#"{"width": 0}"#,
+            r#"{"width": -3}"#,
+            r#"{"width": 1000}"#,
+            r#"{"headlandPasses": 51}"#,
+            r#"{"turnRadius": -1}"#,
+            r#"{"minSwathLength": -1}"#,
+        ] {
+            let e = PlanOptions::from_json_str(text).unwrap_err();
+            assert_eq!(e.code, ErrorCode::OptionOutOfRange, "{text}");
+        }
+        let e = PlanOptions::from_json_str(r#"{"headlandPasses": -1}"#).unwrap_err();
+        assert_eq!(e.code, ErrorCode::InvalidOption);
+    }
+
+    #[test]
+    fn defaults_are_valid() {
+        PlanOptions::default().validate().unwrap();
+    }
+}

@@ -1,0 +1,217 @@
+//! The plan as GeoJSON: a FeatureCollection in the input's coordinates.
+//!
+//! This is the contract with apps and the viewer, so it only grows. Every feature has
+//! `properties.kind`:
+//!
+//! | kind | geometry | properties |
+//! |---|---|---|
+//! | `block` | Polygon | `index`, `order` (position in the order blocks are worked), `swath_count`, `bearing_deg` |
+//! | `obstacle` | Polygon | `index`, `feature` (index of the input feature) |
+//! | `swath` | LineString | `sequence`, `index`, `block`, `line`, `length_m`, `bearing_deg` (driving direction) |
+//! | `headland` | LineString | `sequence`, `pass` (1 = outermost), `length_m` |
+//! | `turn` | LineString | `sequence`, `block`, `length_m` |
+//! | `connection` | LineString | `sequence`, `length_m` |
+//!
+//! Drivable features (`swath`, `headland`, `turn`, `connection`) carry `sequence`, their position
+//! in driving order from 0, and follow each other in that order in `features`; each starts where
+//! the one before it ends. Blocks and obstacles come first. The collection has two more members:
+//! `summary` ([`Summary`]) and `warnings` (a list of `{code, message, feature?}`).
+
+use crate::error::Warning;
+use crate::field::Frame;
+use crate::geometry::bearing_of;
+use crate::metrics::Summary;
+use crate::path::SegmentKind;
+use crate::plan::Plan;
+use crate::route::RouteStep;
+use geo::{LineString, Polygon};
+use serde::Serialize;
+
+/// The plan as a GeoJSON FeatureCollection (serialise it with serde).
+#[derive(Debug, Clone, Serialize)]
+pub struct PlanGeoJson {
+    #[serde(rename = "type")]
+    kind: &'static str,
+    /// The features: blocks and obstacles, then the drivable segments in driving order.
+    pub features: Vec<Feature>,
+    /// The plan's figures.
+    pub summary: Summary,
+    /// Repairs made to the input and things the user should know.
+    pub warnings: Vec<Warning>,
+}
+
+/// One GeoJSON Feature of a plan.
+#[derive(Debug, Clone, Serialize)]
+pub struct Feature {
+    #[serde(rename = "type")]
+    kind: &'static str,
+    /// What the feature is and its figures.
+    pub properties: Properties,
+    /// Its geometry in the input's coordinates.
+    pub geometry: Geometry,
+}
+
+/// The properties of a plan feature; which are present depends on `kind`.
+#[derive(Debug, Clone, Default, Serialize)]
+pub struct Properties {
+    /// `block`, `obstacle`, `swath`, `headland`, `turn` or `connection`.
+    pub kind: &'static str,
+    /// Position in driving order (drivable features).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub sequence: Option<usize>,
+    /// Index of the block, obstacle or swath.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub index: Option<usize>,
+    /// Position of a block in the order blocks are worked.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub order: Option<usize>,
+    /// The block a swath or turn belongs to.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub block: Option<usize>,
+    /// The swath line a swath lies on, counted across the field.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub line: Option<usize>,
+    /// Which headland pass, 1 = outermost.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub pass: Option<usize>,
+    /// Number of swaths of a block.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub swath_count: Option<usize>,
+    /// Index of the input feature an obstacle came from.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub feature: Option<usize>,
+    /// Length, metres.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub length_m: Option<f64>,
+    /// Compass bearing, degrees: the driving direction of a swath, the swath direction of a block.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub bearing_deg: Option<f64>,
+}
+
+/// A GeoJSON geometry of a plan feature.
+#[derive(Debug, Clone, Serialize)]
+#[serde(tag = "type", content = "coordinates")]
+pub enum Geometry {
+    /// A line.
+    LineString(Vec<[f64; 2]>),
+    /// A polygon: outer ring, then holes.
+    Polygon(Vec<Vec<[f64; 2]>>),
+}
+
+impl Plan {
+    /// The plan as a GeoJSON FeatureCollection in the input's coordinates.
+    pub fn to_geojson(&self) -> PlanGeoJson {
+        let out = Output {
+            frame: &self.field.frame,
+        };
+        let mut features = Vec::with_capacity(
+            self.blocks.blocks.len() + self.field.obstacles.len() + self.path.segments.len(),
+        );
+        let order_of = |b: usize| self.route.block_order.iter().position(|&x| x == b);
+        for block in &self.blocks.blocks {
+            features.push(out.feature(
+                Properties {
+                    kind: "block",
+                    index: Some(block.index),
+                    order: order_of(block.index),
+                    swath_count: Some(block.swaths.len()),
+                    bearing_deg: Some(round(block.bearing.to_degrees(), 1e-6)),
+                    ..Default::default()
+                },
+                out.polygon(&block.outline),
+            ));
+        }
+        for (i, o) in self.field.obstacles.iter().enumerate() {
+            features.push(out.feature(
+                Properties {
+                    kind: "obstacle",
+                    index: Some(i),
+                    feature: Some(o.feature),
+                    ..Default::default()
+                },
+                out.polygon(&o.polygon),
+            ));
+        }
+        for (sequence, seg) in self.path.segments.iter().enumerate() {
+            let mut p = Properties {
+                kind: seg.kind.as_str(),
+                sequence: Some(sequence),
+                length_m: Some(round(seg.length(), 1e-3)),
+                ..Default::default()
+            };
+            match seg.step.and_then(|k| self.route.steps.get(k)) {
+                Some(&RouteStep::Swath { swath, block, .. }) => {
+                    p.index = Some(swath);
+                    p.block = Some(block);
+                    p.line = self.swaths.swaths.get(swath).map(|s| s.line_index);
+                    if let (Some(&a), Some(&b)) = (seg.line.0.first(), seg.line.0.last()) {
+                        p.bearing_deg = Some(round(bearing_of(a, b).to_degrees(), 1e-6));
+                    }
+                }
+                Some(&RouteStep::HeadlandPass { pass }) => {
+                    p.pass = self.headlands.passes.get(pass).map(|h| h.index);
+                }
+                None => {}
+            }
+            if seg.kind == SegmentKind::Turn {
+                p.block = self.block_before(sequence);
+            }
+            features.push(out.feature(p, Geometry::LineString(out.line(&seg.line))));
+        }
+        PlanGeoJson {
+            kind: "FeatureCollection",
+            features,
+            summary: self.summary.clone(),
+            warnings: self.warnings.clone(),
+        }
+    }
+
+    /// The plan as GeoJSON text (compact).
+    pub fn to_geojson_string(&self) -> String {
+        // ok: the output types hold only strings, integers and finite floats; serde_json cannot fail.
+        serde_json::to_string(&self.to_geojson()).unwrap_or_default()
+    }
+
+    /// The block of the swath driven just before path segment `k`.
+    fn block_before(&self, k: usize) -> Option<usize> {
+        self.path.segments[..k].iter().rev().find_map(|s| {
+            match s.step.and_then(|i| self.route.steps.get(i)) {
+                Some(&RouteStep::Swath { block, .. }) => Some(block),
+                _ => None,
+            }
+        })
+    }
+}
+
+/// Converts local metres to output coordinates.
+struct Output<'a> {
+    frame: &'a Frame,
+}
+
+impl Output<'_> {
+    fn feature(&self, properties: Properties, geometry: Geometry) -> Feature {
+        Feature {
+            kind: "Feature",
+            properties,
+            geometry,
+        }
+    }
+
+    fn line(&self, l: &LineString) -> Vec<[f64; 2]> {
+        l.0.iter().map(|&c| self.frame.to_output(c)).collect()
+    }
+
+    fn polygon(&self, p: &Polygon) -> Geometry {
+        let mut rings = Vec::with_capacity(1 + p.interiors().len());
+        rings.push(self.line(p.exterior()));
+        rings.extend(p.interiors().iter().map(|r| self.line(r)));
+        Geometry::Polygon(rings)
+    }
+}
+
+/// `v` rounded to a multiple of `step` (a negative power of ten). Dividing by the exact integer
+/// `1 / step` gives the double nearest the decimal, so it prints short.
+fn round(v: f64, step: f64) -> f64 {
+    let scale = (1.0 / step).round();
+    (v * scale).round() / scale
+}

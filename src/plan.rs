@@ -1,0 +1,139 @@
+//! The planner: field → headlands → direction → swaths → blocks → route → path → metrics.
+//!
+//! Each stage is a module of its own with its own types; this module runs them in order and
+//! keeps their results together in a [`Plan`].
+
+use crate::decompose::{cluster_swaths, Blocks};
+use crate::direction::{choose_bearing, DirectionRule};
+use crate::error::{PlanError, Warning, WarningCode};
+use crate::field::Field;
+use crate::headland::{constant_width, Headlands};
+use crate::metrics::{summarise, Summary};
+use crate::options::PlanOptions;
+use crate::path::{build_path, Path};
+use crate::route::{boustrophedon, Route};
+use crate::swath::{generate, Swaths};
+use web_time::Instant;
+
+/// A coverage plan and everything the stages found on the way to it.
+#[derive(Debug, Clone)]
+pub struct Plan {
+    /// The field as planned (local metres).
+    pub field: Field,
+    /// The options used.
+    pub options: PlanOptions,
+    /// Headland passes and the inner field.
+    pub headlands: Headlands,
+    /// The swaths.
+    pub swaths: Swaths,
+    /// The blocks the swaths are grouped in.
+    pub blocks: Blocks,
+    /// The order of work.
+    pub route: Route,
+    /// The path driven.
+    pub path: Path,
+    /// Counts, distances and areas.
+    pub summary: Summary,
+    /// What was repaired in the input, and what the user should know about the plan.
+    pub warnings: Vec<Warning>,
+}
+
+/// Plans a field.
+///
+/// ```
+/// use furrow::{field::Field, plan, PlanOptions};
+///
+/// let text = r#"{"type": "Polygon", "coordinates": [[[24.05, 60.25], [24.056, 60.25],
+///     [24.056, 60.252], [24.05, 60.252], [24.05, 60.25]]]}"#;
+/// let (field, _) = Field::from_geojson_str(text).unwrap();
+/// let options = PlanOptions { width: 6.0, headland_passes: 2, bearing_deg: Some(0.0), ..Default::default() };
+/// let plan = plan(field, &options).unwrap();
+/// // About 333 m east-west, less two 12 m headlands, in 6 m swaths running north.
+/// assert_eq!(plan.summary.swath_count, 52);
+/// assert_eq!(plan.summary.turn_count, 51);
+/// ```
+pub fn plan(field: Field, options: &PlanOptions) -> Result<Plan, PlanError> {
+    let started = Instant::now();
+    let mut plan = plan_stages(field, options, Vec::new())?;
+    plan.summary.planning_ms = started.elapsed().as_secs_f64() * 1000.0;
+    Ok(plan)
+}
+
+/// Reads a field from GeoJSON text (in the coordinates `options.coordinates` names) and plans it.
+/// The planning time in the summary includes reading the input.
+///
+/// ```
+/// use furrow::{plan_geojson, PlanOptions};
+///
+/// let text = r#"{"type": "Polygon", "coordinates": [[[24.05, 60.25], [24.056, 60.25],
+///     [24.056, 60.252], [24.05, 60.252], [24.05, 60.25]]]}"#;
+/// let plan = plan_geojson(text, &PlanOptions::default()).unwrap();
+/// let geojson = plan.to_geojson_string();
+/// assert!(geojson.contains(r#""kind":"swath""#));
+/// ```
+pub fn plan_geojson(text: &str, options: &PlanOptions) -> Result<Plan, PlanError> {
+    let started = Instant::now();
+    options.validate()?;
+    let (field, warnings) = Field::from_geojson_str_in(text, options.coordinates)?;
+    let mut plan = plan_stages(field, options, warnings)?;
+    plan.summary.planning_ms = started.elapsed().as_secs_f64() * 1000.0;
+    Ok(plan)
+}
+
+/// Runs the stages on a field read by the caller, keeping the caller's warnings first.
+pub(crate) fn plan_stages(
+    field: Field,
+    options: &PlanOptions,
+    mut warnings: Vec<Warning>,
+) -> Result<Plan, PlanError> {
+    options.validate()?;
+    let width = options.width;
+    let headlands = constant_width(&field, width, options.headland_passes)?;
+    let rule = match options.bearing_deg {
+        Some(bearing_deg) => DirectionRule::Fixed { bearing_deg },
+        None => DirectionRule::LongestEdge {
+            tolerance_m: width / 2.0,
+        },
+    };
+    let bearing = choose_bearing(&field, rule);
+    let swaths = generate(
+        &headlands.inner,
+        bearing,
+        width,
+        options.min_swath_length_m(),
+    );
+    if swaths.dropped > 0 {
+        warnings.push(Warning::new(
+            WarningCode::ShortSwathsDropped,
+            format!(
+                "{} swath pieces shorter than {:.1} m were left to the headland passes",
+                swaths.dropped,
+                options.min_swath_length_m()
+            ),
+        ));
+    }
+    let blocks = cluster_swaths(&swaths);
+    if blocks.blocks.len() > 1 {
+        warnings.push(Warning::new(
+            WarningCode::StraightConnections,
+            format!(
+                "the field falls into {} blocks; they are joined by straight connections, which may cross crop or obstacles",
+                blocks.blocks.len()
+            ),
+        ));
+    }
+    let route = boustrophedon(&swaths, &blocks, &headlands.passes, None);
+    let path = build_path(&route, &swaths, &headlands.passes);
+    let summary = summarise(&field, &headlands, &swaths, &blocks, &path);
+    Ok(Plan {
+        field,
+        options: options.clone(),
+        headlands,
+        swaths,
+        blocks,
+        route,
+        path,
+        summary,
+        warnings,
+    })
+}

@@ -1,0 +1,340 @@
+//! The benchmark corpus end to end: every valid field plans with the settings its README
+//! suggests and the plan keeps the geometric invariants; every invalid input gives its error;
+//! every real parcel plans or is refused with a typed error.
+
+mod common;
+
+use common::corpus::{fields_dir, invalid_fields, real_parcels, valid_fields};
+use furrow::path::SegmentKind;
+use furrow::{plan_geojson, ErrorCode, Plan, PlanOptions};
+use geo::{Area, Contains, Coord, Distance, Euclidean, Point};
+use std::path::Path;
+
+/// Metres of slack for "on the boundary" (geo's boolean operations snap to a grid of about 1e-6
+/// of the field's extent).
+const EPS: f64 = 1e-3;
+
+#[test]
+fn test_copy_of_the_fields_matches_the_shared_corpus() {
+    let shared = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/fields");
+    if !shared.is_dir() {
+        eprintln!("no ../shared/fields beside this clone: nothing to compare");
+        return;
+    }
+    let mut stale = Vec::new();
+    for entry in walk(&shared) {
+        let rel = entry.strip_prefix(&shared).expect("under shared");
+        let ours = fields_dir().join(rel);
+        let same = std::fs::read(&ours).ok() == std::fs::read(&entry).ok();
+        if !same {
+            stale.push(rel.display().to_string());
+        }
+    }
+    assert!(
+        stale.is_empty(),
+        "tests/fields is out of date with ../shared/fields ({stale:?}): run scripts/sync-fields.sh"
+    );
+}
+
+fn walk(dir: &Path) -> Vec<std::path::PathBuf> {
+    let mut out = Vec::new();
+    for e in std::fs::read_dir(dir).expect("readable dir").flatten() {
+        let p = e.path();
+        if p.is_dir() {
+            out.extend(walk(&p));
+        } else {
+            out.push(p);
+        }
+    }
+    out
+}
+
+/// (planar area in the frame, geodesic area by geo on the WGS84 ellipsoid) of each outer ring.
+fn ring_areas(text: &str, frame: &furrow::field::Frame) -> Vec<(f64, f64)> {
+    use geo::{GeodesicArea, LineString, Polygon};
+    let v: serde_json::Value = serde_json::from_str(text).expect("JSON");
+    let mut out = Vec::new();
+    for f in v["features"].as_array().expect("features") {
+        let ring: Vec<[f64; 2]> = f["geometry"]["coordinates"][0]
+            .as_array()
+            .expect("ring")
+            .iter()
+            .map(|p| [p[0].as_f64().expect("lon"), p[1].as_f64().expect("lat")])
+            .collect();
+        let lon_lat = Polygon::new(LineString::from(ring.clone()), vec![]);
+        let local: Vec<Coord> = ring.iter().map(|&p| frame.to_local(p)).collect();
+        let planar = Polygon::new(LineString::new(local), vec![]).unsigned_area();
+        out.push((planar, lon_lat.geodesic_area_unsigned()));
+    }
+    out
+}
+
+fn plan_field(text: &str, options: &PlanOptions) -> Plan {
+    plan_geojson(text, options).unwrap_or_else(|e| panic!("{e}"))
+}
+
+#[test]
+fn every_valid_field_plans_and_keeps_the_invariants() {
+    for field in valid_fields() {
+        let plan = plan_field(&field.text(), &field.options);
+        let name = &field.name;
+        let s = &plan.summary;
+        assert!(s.swath_count > 0, "{name}: no swaths");
+        // The README's areas are rounded and were computed on a sphere: within 1 %.
+        let area_ha = s.field_area_m2 / 10_000.0;
+        assert!(
+            (area_ha - field.area_ha).abs() <= field.area_ha * 0.01,
+            "{name}: area {area_ha} ha, README says {} ha",
+            field.area_ha
+        );
+        // Every input ring's area in the local frame matches geo's geodesic area on the ellipsoid.
+        for (planar, geodesic) in ring_areas(&field.text(), &plan.field.frame) {
+            assert!(
+                (planar - geodesic).abs() <= geodesic * 5e-4,
+                "{name}: planar {planar} m², geodesic {geodesic} m²"
+            );
+        }
+        // Obstacles are kept, except that overlapping ones are merged (with a warning).
+        let merged = plan
+            .warnings
+            .iter()
+            .any(|w| w.code == furrow::WarningCode::ObstaclesMerged);
+        let kept = plan.field.obstacles.len();
+        assert!(
+            kept == field.obstacles || (merged && kept < field.obstacles && kept > 0),
+            "{name}: {kept} obstacles of {}",
+            field.obstacles
+        );
+        check_swaths(&plan, name);
+        check_path(&plan, name);
+        check_headland_passes(&plan, name);
+    }
+}
+
+/// Swaths lie inside the inner field, parallel to the bearing, one width apart.
+fn check_swaths(plan: &Plan, name: &str) {
+    let w = plan.options.width;
+    let inner = &plan.headlands.inner;
+    let bearing = plan.swaths.bearing;
+    let mut by_line: Vec<(usize, f64)> = Vec::new();
+    for s in &plan.swaths.swaths {
+        let mid = Point((s.centre.start + s.centre.end) / 2.0);
+        assert!(
+            inner.contains(&mid),
+            "{name}: swath {} leaves the inner field",
+            s.index
+        );
+        for end in [s.centre.start, s.centre.end] {
+            let d = Euclidean.distance(&Point(end), inner);
+            assert!(d < EPS, "{name}: swath {} ends {d} m outside", s.index);
+        }
+        let b = furrow::geometry::bearing_of(s.centre.start, s.centre.end);
+        let diff = furrow::geometry::swath_direction(b - bearing);
+        assert!(
+            diff.min(std::f64::consts::PI - diff) < 1e-9,
+            "{name}: swath {} not parallel",
+            s.index
+        );
+        assert!(s.length() >= plan.options.min_swath_length_m() - 1e-9);
+        if by_line.last().map(|l| l.0) != Some(s.line_index) {
+            by_line.push((s.line_index, s.across));
+        }
+    }
+    let last_line = by_line.iter().map(|l| l.0).max().unwrap_or(0);
+    for pair in by_line.windows(2) {
+        let ((i, a), (j, b)) = (pair[0], pair[1]);
+        let gap = b - a;
+        let expected = (j - i) as f64 * w;
+        if j == last_line {
+            // The last line may be moved back to work the leftover strip: closer, never further.
+            assert!(
+                gap <= expected + 1e-6 && gap > 0.0,
+                "{name}: last gap {gap}"
+            );
+        } else {
+            assert!(
+                (gap - expected).abs() < 1e-6,
+                "{name}: lines {i} and {j} are {gap} m apart, expected {expected}"
+            );
+        }
+    }
+}
+
+/// The path is continuous, every swath and headland pass is driven once, and the GeoJSON
+/// numbers drivable features 0, 1, 2, ... in driving order.
+fn check_path(plan: &Plan, name: &str) {
+    let segs = &plan.path.segments;
+    for pair in segs.windows(2) {
+        let a: Coord = *pair[0].line.0.last().expect("non-empty segment");
+        let b: Coord = pair[1].line.0[0];
+        assert!(
+            (a.x - b.x).hypot(a.y - b.y) < 1e-6,
+            "{name}: gap in the path"
+        );
+    }
+    assert_eq!(
+        plan.path.count_of(SegmentKind::Swath),
+        plan.swaths.swaths.len(),
+        "{name}"
+    );
+    assert_eq!(
+        plan.path.count_of(SegmentKind::HeadlandPass),
+        plan.headlands.passes.len(),
+        "{name}"
+    );
+    let geojson: serde_json::Value =
+        serde_json::from_str(&plan.to_geojson_string()).expect("plan output is JSON");
+    let mut next = 0;
+    for f in geojson["features"].as_array().expect("features") {
+        let kind = f["properties"]["kind"].as_str().expect("kind");
+        match kind {
+            "swath" | "headland" | "turn" | "connection" => {
+                assert_eq!(f["properties"]["sequence"], next, "{name}: sequence");
+                assert_eq!(f["geometry"]["type"], "LineString");
+                next += 1;
+            }
+            "block" | "obstacle" => assert_eq!(f["geometry"]["type"], "Polygon"),
+            other => panic!("{name}: unknown kind {other}"),
+        }
+    }
+    assert_eq!(next, segs.len());
+    for key in [
+        "swath_count",
+        "turn_count",
+        "working_distance_m",
+        "turning_distance_m",
+        "connection_distance_m",
+        "total_distance_m",
+        "field_area_m2",
+        "headland_area_m2",
+        "bearing_deg",
+        "planning_ms",
+    ] {
+        assert!(geojson["summary"][key].is_number(), "{name}: summary.{key}");
+    }
+    assert!(geojson["warnings"].is_array());
+}
+
+/// Headland pass k lies (k - 1/2) w inside the boundary, away from rounded corners.
+fn check_headland_passes(plan: &Plan, name: &str) {
+    let w = plan.options.width;
+    let boundary = plan.field.boundary.exterior();
+    for pass in &plan.headlands.passes {
+        let expected = (pass.index as f64 - 0.5) * w;
+        for c in &pass.ring.0 {
+            let d = Euclidean.distance(&Point(*c), boundary);
+            assert!(
+                (d - expected).abs() < 0.01,
+                "{name}: pass {} vertex {d} m from the boundary, expected {expected}",
+                pass.index
+            );
+        }
+    }
+    let inner_area = plan.headlands.inner.unsigned_area();
+    assert!(inner_area > 0.0 && inner_area < plan.field.boundary.unsigned_area());
+}
+
+#[test]
+fn every_invalid_field_gives_its_error() {
+    for (path, code) in invalid_fields() {
+        let text = std::fs::read_to_string(&path).expect("readable");
+        let e = plan_geojson(&text, &PlanOptions::default())
+            .err()
+            .unwrap_or_else(|| panic!("{} planned", path.display()));
+        assert_eq!(e.code.as_str(), code, "{}: {e}", path.display());
+        assert!(!e.message.is_empty());
+    }
+}
+
+#[test]
+fn every_invalid_input_is_covered() {
+    // A new file in invalid/ must get its expected code in tests/common/corpus.rs (or be the
+    // swapped-coordinates case, which is valid GeoJSON somewhere else on Earth).
+    let known: Vec<_> = invalid_fields().into_iter().map(|(p, _)| p).collect();
+    for entry in std::fs::read_dir(fields_dir().join("invalid"))
+        .expect("invalid/")
+        .flatten()
+    {
+        let p = entry.path();
+        let name = p.file_name().and_then(|n| n.to_str()).unwrap_or("");
+        if name.ends_with(".geojson") && name != "lat-lon-swapped.geojson" {
+            assert!(known.contains(&p), "{name} has no expected error code");
+        }
+    }
+}
+
+#[test]
+fn swapped_coordinates_do_not_crash() {
+    // [lat, lon] given as [lon, lat] is a valid field elsewhere on Earth; whether the planner can
+    // tell is a heuristic. It must plan or refuse, never panic.
+    let text = std::fs::read_to_string(fields_dir().join("invalid/lat-lon-swapped.geojson"))
+        .expect("readable");
+    let _ = plan_geojson(&text, &PlanOptions::default());
+}
+
+#[test]
+fn real_parcels_plan_or_are_refused_with_a_typed_error() {
+    let options = PlanOptions {
+        width: 6.0,
+        headland_passes: 2,
+        turn_radius: 8.0,
+        ..PlanOptions::default()
+    };
+    let (mut planned, mut refused) = (0, 0);
+    for (file, i, text) in real_parcels() {
+        match plan_geojson(&text, &options) {
+            Ok(plan) => {
+                planned += 1;
+                check_path(&plan, &format!("{file}[{i}]"));
+            }
+            Err(e) => {
+                refused += 1;
+                assert_ne!(e.code, ErrorCode::Internal, "{file}[{i}]: {e}");
+                if file == "dk_marker_2026_sample" && i == 63 {
+                    assert_eq!(e.code, ErrorCode::SelfIntersection, "{e}");
+                }
+            }
+        }
+    }
+    eprintln!("real parcels: {planned} planned, {refused} refused");
+    assert!(planned >= 100, "only {planned} real parcels planned");
+}
+
+#[test]
+fn planning_is_deterministic() {
+    for field in valid_fields().into_iter().take(6) {
+        let a = plan_field(&field.text(), &field.options);
+        let b = plan_field(&field.text(), &field.options);
+        let strip = |p: &Plan| {
+            let mut g = p.to_geojson();
+            g.summary.planning_ms = 0.0;
+            serde_json::to_string(&g).expect("json")
+        };
+        assert_eq!(strip(&a), strip(&b), "{}", field.name);
+    }
+}
+
+#[test]
+fn rectangle_acceptance_case() {
+    // The acceptance case of the foundation issue: rectangle.geojson at 6 m with 2 passes.
+    let text = std::fs::read_to_string(fields_dir().join("rectangle.geojson")).expect("readable");
+    let options = PlanOptions {
+        width: 6.0,
+        headland_passes: 2,
+        ..PlanOptions::default()
+    };
+    let plan = plan_field(&text, &options);
+    // About 251 m by 150 m: the longest edge runs east, so 22 swaths (150 - 24 = 126 m across:
+    // 21 whole strips and one overlapping), each as long as the field less two 12 m headlands.
+    use geo::BoundingRect;
+    let rect = plan.field.boundary.bounding_rect().expect("bounded");
+    assert!((plan.summary.bearing_deg - 90.0).abs() < 0.01);
+    assert_eq!(plan.summary.swath_count, 22);
+    for s in &plan.swaths.swaths {
+        assert!(
+            (s.length() - (rect.width() - 24.0)).abs() < 0.01,
+            "{}",
+            s.length()
+        );
+    }
+}
