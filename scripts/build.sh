@@ -1,0 +1,38 @@
+#!/usr/bin/env bash
+# Builds the WebAssembly package into pkg/ (npm package "furrow", web target, also loadable in
+# Node with initSync) and assembles the viewer site in target/site.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+scripts/setup.sh rust
+
+echo "[build] wasm (release)"
+cargo build --release --target wasm32-unknown-unknown --lib
+rm -rf pkg
+wasm-bindgen --target web --out-dir pkg target/wasm32-unknown-unknown/release/furrow.wasm
+# Debian's wasm-opt (binaryen 108) produces a module that fails to load: never run it here.
+
+version=$(awk -F'"' '/^version = / { print $2; exit }' Cargo.toml)
+cat > pkg/package.json <<JSON
+{
+  "name": "furrow",
+  "version": "$version",
+  "description": "Coverage path planning for farm machines, in WebAssembly: headland passes, swaths, blocks, routes and paths from a GeoJSON field",
+  "license": "MIT OR Apache-2.0",
+  "type": "module",
+  "main": "furrow.js",
+  "module": "furrow.js",
+  "types": "furrow.d.ts",
+  "exports": {
+    ".": { "types": "./furrow.d.ts", "default": "./furrow.js" },
+    "./furrow_bg.wasm": "./furrow_bg.wasm"
+  },
+  "files": ["furrow.js", "furrow.d.ts", "furrow_bg.wasm", "furrow_bg.wasm.d.ts", "README.md"],
+  "sideEffects": false,
+  "keywords": ["agriculture", "coverage path planning", "geojson", "wasm", "tractor"]
+}
+JSON
+cp js/README.md pkg/README.md
+raw=$(wc -c < pkg/furrow_bg.wasm)
+gz=$(gzip -9 -c pkg/furrow_bg.wasm | wc -c)
+echo "[build] pkg/furrow_bg.wasm: $raw bytes, $gz gzipped"
+node scripts/site.mjs
