@@ -41,6 +41,10 @@ export function startServer(root, port = 8080, host = "127.0.0.1") {
         path = join(path, "index.html");
         info = await stat(path).catch(() => null);
       }
+      if (!info && url.pathname === "/favicon.ico") {
+        res.writeHead(204).end(); // browsers ask for it on any page; not an error
+        return;
+      }
       if (!info) {
         res.writeHead(404, { "content-type": "text/plain" }).end("not found");
         return;

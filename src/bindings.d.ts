@@ -123,6 +123,7 @@ export type ErrorCode =
   | "invalid_option"
   | "option_out_of_range"
   | "input_too_large"
+  | "field_too_large"
   | "headland_consumes_field"
   | "internal";
 

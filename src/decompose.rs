@@ -44,7 +44,7 @@ pub struct Blocks {
 ///     exterior: [(x: 0., y: 0.), (x: 60., y: 0.), (x: 60., y: 100.), (x: 0., y: 100.)],
 ///     interiors: [[(x: 20., y: 40.), (x: 40., y: 40.), (x: 40., y: 60.), (x: 20., y: 60.)]],
 /// );
-/// let swaths = generate(&MultiPolygon::new(vec![field]), 0.0, 6.0, 6.0);
+/// let swaths = generate(&MultiPolygon::new(vec![field]), 0.0, 6.0, 6.0).unwrap();
 /// let blocks = cluster_swaths(&swaths);
 /// assert_eq!(blocks.blocks.len(), 4);
 /// let total: usize = blocks.blocks.iter().map(|b| b.swaths.len()).sum();
@@ -159,7 +159,7 @@ mod tests {
     #[test]
     fn a_convex_field_is_one_block() {
         let field = polygon![(x: 0., y: 0.), (x: 100., y: 0.), (x: 80., y: 60.), (x: 10., y: 50.)];
-        let swaths = generate(&MultiPolygon::new(vec![field]), 0.3, 6.0, 6.0);
+        let swaths = generate(&MultiPolygon::new(vec![field]), 0.3, 6.0, 6.0).unwrap();
         let blocks = cluster_swaths(&swaths);
         assert_eq!(blocks.blocks.len(), 1);
         assert_eq!(blocks.blocks[0].swaths.len(), swaths.swaths.len());
@@ -168,7 +168,7 @@ mod tests {
     #[test]
     fn outline_covers_the_strips() {
         let field = polygon![(x: 0., y: 0.), (x: 30., y: 0.), (x: 30., y: 100.), (x: 0., y: 100.)];
-        let swaths = generate(&MultiPolygon::new(vec![field]), 0.0, 6.0, 6.0);
+        let swaths = generate(&MultiPolygon::new(vec![field]), 0.0, 6.0, 6.0).unwrap();
         let blocks = cluster_swaths(&swaths);
         let b = &blocks.blocks[0];
         assert!((b.outline.unsigned_area() - 3000.0).abs() < 1e-6);
@@ -187,7 +187,8 @@ mod tests {
             std::f64::consts::FRAC_PI_2,
             6.0,
             6.0,
-        );
+        )
+        .unwrap();
         let blocks = cluster_swaths(&swaths);
         assert_eq!(blocks.blocks.len(), 3);
     }

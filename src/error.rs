@@ -43,6 +43,9 @@ pub enum ErrorCode {
     OptionOutOfRange,
     /// The input is larger than the planner accepts (vertices or bytes).
     InputTooLarge,
+    /// The field is too large to plan: too many kilometres across, or too many swaths at the
+    /// working width.
+    FieldTooLarge,
     /// The headland passes leave no inner field to put swaths in.
     HeadlandConsumesField,
     /// A failure inside the planner that input should never cause; please report it.
@@ -68,6 +71,7 @@ impl ErrorCode {
             ErrorCode::InvalidOption => "invalid_option",
             ErrorCode::OptionOutOfRange => "option_out_of_range",
             ErrorCode::InputTooLarge => "input_too_large",
+            ErrorCode::FieldTooLarge => "field_too_large",
             ErrorCode::HeadlandConsumesField => "headland_consumes_field",
             ErrorCode::Internal => "internal",
         }

@@ -49,7 +49,7 @@ pub mod swath;
 pub mod tracks;
 
 #[cfg(target_arch = "wasm32")]
-mod bindings;
+pub mod bindings;
 
 pub use error::{ErrorCode, PlanError, Warning, WarningCode};
 pub use options::PlanOptions;

@@ -77,7 +77,7 @@ const MIN_CONNECTOR_M: f64 = 1e-6;
 /// use geo::{polygon, MultiPolygon};
 ///
 /// let field = polygon![(x: 0., y: 0.), (x: 30., y: 0.), (x: 30., y: 100.), (x: 0., y: 100.)];
-/// let swaths = generate(&MultiPolygon::new(vec![field]), 0.0, 6.0, 6.0);
+/// let swaths = generate(&MultiPolygon::new(vec![field]), 0.0, 6.0, 6.0).unwrap();
 /// let route = boustrophedon(&swaths, &cluster_swaths(&swaths), &[], None);
 /// let path = build_path(&route, &swaths, &[]);
 /// let turns = path.segments.iter().filter(|s| s.kind == SegmentKind::Turn).count();
@@ -233,7 +233,7 @@ mod tests {
             index: 1,
             ring: LineString::from(vec![(3., 3.), (97., 3.), (97., 97.), (3., 97.), (3., 3.)]),
         }];
-        let swaths = generate(&MultiPolygon::new(vec![inner]), 0.4, 6.0, 6.0);
+        let swaths = generate(&MultiPolygon::new(vec![inner]), 0.4, 6.0, 6.0).unwrap();
         let route = boustrophedon(&swaths, &cluster_swaths(&swaths), &passes, None);
         let path = build_path(&route, &swaths, &passes);
         for w in path.segments.windows(2) {

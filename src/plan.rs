@@ -101,7 +101,7 @@ pub(crate) fn plan_stages(
         bearing,
         width,
         options.min_swath_length_m(),
-    );
+    )?;
     if swaths.dropped > 0 {
         warnings.push(Warning::new(
             WarningCode::ShortSwathsDropped,

@@ -48,7 +48,7 @@ pub struct Route {
 /// use geo::{polygon, MultiPolygon};
 ///
 /// let field = polygon![(x: 0., y: 0.), (x: 30., y: 0.), (x: 30., y: 100.), (x: 0., y: 100.)];
-/// let swaths = generate(&MultiPolygon::new(vec![field]), 0.0, 6.0, 6.0);
+/// let swaths = generate(&MultiPolygon::new(vec![field]), 0.0, 6.0, 6.0).unwrap();
 /// let blocks = cluster_swaths(&swaths);
 /// let route = boustrophedon(&swaths, &blocks, &[], None);
 /// let reversed: Vec<bool> = route.steps.iter().map(|s| match s {
@@ -179,7 +179,7 @@ mod tests {
             exterior: [(x: 0., y: 0.), (x: 60., y: 0.), (x: 60., y: 100.), (x: 0., y: 100.)],
             interiors: [[(x: 20., y: 40.), (x: 40., y: 40.), (x: 40., y: 60.), (x: 20., y: 60.)]],
         );
-        let swaths = generate(&MultiPolygon::new(vec![field]), 0.0, 6.0, 6.0);
+        let swaths = generate(&MultiPolygon::new(vec![field]), 0.0, 6.0, 6.0).unwrap();
         let blocks = cluster_swaths(&swaths);
         let route = boustrophedon(&swaths, &blocks, &[], None);
         let mut seen: Vec<usize> = route
@@ -220,7 +220,7 @@ mod tests {
         ];
         let inner =
             polygon![(x: 12., y: 12.), (x: 88., y: 12.), (x: 88., y: 88.), (x: 12., y: 88.)];
-        let swaths = generate(&MultiPolygon::new(vec![inner]), 0.0, 6.0, 6.0);
+        let swaths = generate(&MultiPolygon::new(vec![inner]), 0.0, 6.0, 6.0).unwrap();
         let blocks = cluster_swaths(&swaths);
         let route = boustrophedon(&swaths, &blocks, &passes, None);
         let tail: Vec<_> = route.steps[route.steps.len() - 2..].to_vec();

@@ -8,11 +8,15 @@
 //! standing, a known complaint about Fields2Cover). Lines are cut where they leave the inner field
 //! or cross an obstacle; pieces shorter than a minimum length are left to the headland passes.
 
+use crate::error::{ErrorCode, PlanError};
 use crate::geometry::SweepFrame;
 use geo::{Coord, Line, MultiPolygon};
 
 /// Swath-line spacing below this fraction of the width is not worth an extra, overlapping line.
 const LEFTOVER_TOLERANCE: f64 = 1e-3;
+/// Most swath lines a field may need at one bearing (a 40 km field at 0.4 m, a 2 km field at
+/// 2 cm); beyond that the width is a mistake, and the plan would take seconds and gigabytes.
+pub const MAX_SWATH_LINES: usize = 100_000;
 
 /// One swath: a straight piece of a swath line inside the inner field.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -89,16 +93,30 @@ pub fn line_offsets(lo: f64, hi: f64, width: f64) -> Vec<f64> {
 ///
 /// // A 30 m wide, 100 m long strip running north, worked 6 m wide: 5 swaths of 100 m.
 /// let strip = polygon![(x: 0., y: 0.), (x: 30., y: 0.), (x: 30., y: 100.), (x: 0., y: 100.)];
-/// let swaths = generate(&MultiPolygon::new(vec![strip]), 0.0, 6.0, 6.0);
+/// let swaths = generate(&MultiPolygon::new(vec![strip]), 0.0, 6.0, 6.0).unwrap();
 /// assert_eq!(swaths.swaths.len(), 5);
 /// assert!((swaths.swaths[0].centre.start.x - 3.0).abs() < 1e-9);
 /// assert!((swaths.swaths[0].length() - 100.0).abs() < 1e-9);
 /// ```
-pub fn generate(inner: &MultiPolygon, bearing: f64, width: f64, min_length: f64) -> Swaths {
+pub fn generate(
+    inner: &MultiPolygon,
+    bearing: f64,
+    width: f64,
+    min_length: f64,
+) -> Result<Swaths, PlanError> {
     let frame = SweepFrame::new(bearing);
     let mut swaths = Vec::new();
     let mut dropped = 0;
     if let Some((lo, hi)) = frame.across_extent(inner) {
+        let lines = (hi - lo) / width;
+        if !(lines <= MAX_SWATH_LINES as f64) {
+            return Err(PlanError::new(
+                ErrorCode::FieldTooLarge,
+                format!(
+                    "at {width} m working width the field needs {lines:.0} swaths; the planner plans up to {MAX_SWATH_LINES}"
+                ),
+            ));
+        }
         let offsets = line_offsets(lo, hi, width);
         let pieces = frame.clip(inner, &offsets);
         for (line_index, (&across, line)) in offsets.iter().zip(&pieces).enumerate() {
@@ -117,13 +135,13 @@ pub fn generate(inner: &MultiPolygon, bearing: f64, width: f64, min_length: f64)
             }
         }
     }
-    Swaths {
+    Ok(Swaths {
         bearing,
         width,
         frame,
         swaths,
         dropped,
-    }
+    })
 }
 
 impl Swaths {
@@ -161,7 +179,7 @@ mod tests {
         );
         let inner = MultiPolygon::new(vec![field.clone()]);
         // Swaths running east (bearing 90 degrees): ten lines at y = 57, 51, ..., 3.
-        let s = generate(&inner, FRAC_PI_2, 6.0, 6.0);
+        let s = generate(&inner, FRAC_PI_2, 6.0, 6.0).unwrap();
         let through_hole = s
             .swaths
             .iter()
@@ -179,7 +197,7 @@ mod tests {
     fn short_pieces_are_dropped() {
         // A triangle: the lines near its tip are short.
         let tri = polygon![(x: 0., y: 0.), (x: 100., y: 0.), (x: 0., y: 50.)];
-        let s = generate(&MultiPolygon::new(vec![tri]), 0.0, 6.0, 10.0);
+        let s = generate(&MultiPolygon::new(vec![tri]), 0.0, 6.0, 10.0).unwrap();
         assert!(s.dropped > 0);
         assert!(s.swaths.iter().all(|w| w.length() >= 10.0));
     }

@@ -20,6 +20,9 @@ pub const MIN_REGION_AREA_M2: f64 = 1e-4;
 pub const MAX_ABS_LATITUDE_DEG: f64 = 89.0;
 /// Metric coordinates beyond this (metres) from the origin are refused.
 pub const MAX_ABS_METRIC_M: f64 = 1e7;
+/// Fields larger than this across (metres, the diagonal of the bounding box) are refused: no farm
+/// field is, and the local projection is only exact to a millimetre within 20 km of the centre.
+pub const MAX_FIELD_EXTENT_M: f64 = 40_000.0;
 
 /// Builds a [`Field`] from parsed input, repairing what can be repaired.
 pub fn field_from_input(
@@ -64,6 +67,20 @@ pub fn field_from_input(
     let boundary = Polygon::new(exterior, vec![]);
     if boundary.unsigned_area() < MIN_FIELD_AREA_M2 {
         return Err(zero_area(&boundary_in, 0, MIN_FIELD_AREA_M2));
+    }
+    if let Some(rect) = boundary.bounding_rect() {
+        let extent = rect.width().hypot(rect.height());
+        if extent > MAX_FIELD_EXTENT_M {
+            return Err(PlanError::new(
+                ErrorCode::FieldTooLarge,
+                format!(
+                    "the field is {:.1} km across; the planner plans fields up to {} km across",
+                    extent / 1000.0,
+                    MAX_FIELD_EXTENT_M / 1000.0
+                ),
+            )
+            .at_feature(boundary_in.feature));
+        }
     }
 
     let mut obstacles = Vec::new();

@@ -1,0 +1,80 @@
+// The built npm package in a real browser: Debian's Chromium, driven by playwright-core, loads
+// pkg/furrow.js from a localhost server (streaming compile of application/wasm), plans every
+// corpus field and reports errors as FurrowErrors.
+import { test } from "node:test";
+import assert from "node:assert/strict";
+import { execFileSync } from "node:child_process";
+import { existsSync } from "node:fs";
+import { chromium } from "playwright-core";
+import { startServer } from "../scripts/serve.mjs";
+
+const SITE = "target/site";
+
+export async function launchChromium() {
+  const executablePath = execFileSync("which", ["chromium"], { encoding: "utf8" }).trim();
+  return chromium.launch({
+    executablePath,
+    headless: true,
+    args: [
+      "--no-sandbox",
+      "--disable-gpu",
+      "--disable-quic",
+      "--no-first-run",
+      "--disable-background-networking",
+      "--disable-component-update",
+      "--disable-sync",
+    ],
+  });
+}
+
+test("the package plans in Chromium", { timeout: 60_000 }, async () => {
+  assert.ok(existsSync(`${SITE}/pkg/furrow.js`), "target/site is missing: run scripts/build.sh first");
+  const server = await startServer(SITE, 0);
+  const browser = await launchChromium();
+  try {
+    const page = await browser.newPage();
+    const problems = [];
+    page.on("console", (m) => m.type() === "error" && problems.push(m.text()));
+    page.on("pageerror", (e) => problems.push(String(e)));
+    await page.goto(`http://127.0.0.1:${server.address().port}/fields/index.json`);
+    const result = await page.evaluate(async () => {
+      const furrow = await import("/pkg/furrow.js");
+      await furrow.default();
+      const fields = await (await fetch("/fields/index.json")).json();
+      const out = { planned: [], times: [] };
+      for (const f of fields) {
+        const geojson = await (await fetch(`/${f.file}`)).json();
+        const options = { width: f.width, headlandPasses: f.headlandPasses, turnRadius: f.turnRadius };
+        furrow.plan(geojson, options); // warm-up
+        const t = performance.now();
+        const plan = furrow.plan(geojson, options);
+        out.times.push([f.name, performance.now() - t]);
+        out.planned.push([f.name, plan.type, plan.summary.swath_count, plan.features.length]);
+      }
+      try {
+        furrow.plan({ type: "Polygon", coordinates: [[[0, 0], [1, 1], [1, 0], [0, 1], [0, 0]]] });
+        out.error = "no error";
+      } catch (e) {
+        out.error = { isError: e instanceof Error, name: e.name, code: e.code, coordinate: e.coordinate };
+      }
+      out.version = furrow.version();
+      return out;
+    });
+    assert.ok(result.planned.length >= 20);
+    for (const [name, type, swaths, features] of result.planned) {
+      assert.equal(type, "FeatureCollection", name);
+      assert.ok(swaths > 0 && features > swaths, name);
+    }
+    assert.deepEqual(result.error.isError, true);
+    assert.equal(result.error.name, "FurrowError");
+    assert.equal(result.error.code, "self_intersection");
+    assert.equal(result.error.coordinate.length, 2);
+    assert.match(result.version, /^\d+\.\d+\.\d+/);
+    assert.deepEqual(problems, []);
+    const slowest = result.times.sort((a, b) => b[1] - a[1]).slice(0, 3);
+    console.log(`# slowest plans in Chromium (ms, one run after warm-up): ${JSON.stringify(slowest)}`);
+  } finally {
+    await browser.close();
+    server.close();
+  }
+});

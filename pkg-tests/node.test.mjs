@@ -1,0 +1,115 @@
+// The built npm package (pkg/) as a Node app uses it: initSync with the wasm bytes, then plan.
+import { test } from "node:test";
+import assert from "node:assert/strict";
+import { existsSync, readFileSync, readdirSync } from "node:fs";
+
+const pkgUrl = new URL("../pkg/", import.meta.url);
+const fieldsUrl = new URL("../tests/fields/", import.meta.url);
+if (!existsSync(new URL("furrow.js", pkgUrl))) {
+  throw new Error("pkg/ is missing: run scripts/build.sh first");
+}
+const furrow = await import(new URL("furrow.js", pkgUrl));
+furrow.initSync({ module: readFileSync(new URL("furrow_bg.wasm", pkgUrl)) });
+
+const readField = (name) => JSON.parse(readFileSync(new URL(name, fieldsUrl), "utf8"));
+
+/** The corpus README's table: file, width, headland passes, turning radius. */
+function corpus() {
+  const rows = [];
+  for (const line of readFileSync(new URL("README.md", fieldsUrl), "utf8").split("\n")) {
+    const c = line.split("|").map((s) => s.trim());
+    if (c.length >= 10 && c[1].endsWith(".geojson")) {
+      rows.push({ file: c[1], width: +c[6], headlandPasses: +c[7], turnRadius: +c[8] });
+    }
+  }
+  return rows;
+}
+
+test("package.json describes the package", () => {
+  const pkg = JSON.parse(readFileSync(new URL("package.json", pkgUrl), "utf8"));
+  assert.equal(pkg.name, "furrow");
+  assert.equal(pkg.type, "module");
+  assert.equal(pkg.types, "furrow.d.ts");
+  for (const file of pkg.files) assert.ok(existsSync(new URL(file, pkgUrl)), file);
+});
+
+test("TypeScript definitions declare the API and its types", () => {
+  const dts = readFileSync(new URL("furrow.d.ts", pkgUrl), "utf8");
+  assert.match(dts, /export function plan\(field: FieldInput, options\?: PlanOptions\): Plan;/);
+  for (const name of ["PlanOptions", "Plan", "PlanSummary", "PlanFeature", "FurrowError", "ErrorCode"]) {
+    assert.match(dts, new RegExp(`export (interface|type) ${name}\\b`), name);
+  }
+  // Every option the planner knows is typed.
+  for (const key of Object.keys(furrow.defaultOptions())) {
+    assert.match(dts, new RegExp(`\\b${key}\\?:`), `option ${key}`);
+  }
+});
+
+test("every corpus field plans with its suggested settings", () => {
+  const rows = corpus();
+  assert.ok(rows.length >= 20);
+  for (const row of rows) {
+    const field = readField(row.file);
+    const { file, ...options } = row;
+    const plan = furrow.plan(field, options);
+    assert.equal(plan.type, "FeatureCollection", file);
+    assert.ok(plan.summary.swath_count > 0, file);
+    // Drivable features follow each other in driving order, each starting where the last ended.
+    const drivable = plan.features.filter((f) =>
+      ["swath", "headland", "turn", "connection"].includes(f.properties.kind),
+    );
+    drivable.forEach((f, i) => assert.equal(f.properties.sequence, i, file));
+    for (let i = 1; i < drivable.length; i++) {
+      const end = drivable[i - 1].geometry.coordinates.at(-1);
+      const start = drivable[i].geometry.coordinates[0];
+      assert.ok(Math.abs(end[0] - start[0]) < 1e-8 && Math.abs(end[1] - start[1]) < 1e-8, file);
+    }
+    // The plan is in the input's coordinates: near the field's own longitude and latitude.
+    const [lon, lat] = field.features[0].geometry.coordinates[0][0];
+    const [x, y] = drivable[0].geometry.coordinates[0];
+    assert.ok(Math.abs(x - lon) < 0.05 && Math.abs(y - lat) < 0.05, file);
+  }
+});
+
+test("options change the plan", () => {
+  const field = readField("rectangle.geojson");
+  const a = furrow.plan(field, { width: 6, headlandPasses: 2 });
+  const b = furrow.plan(field, { width: 3, headlandPasses: 2 });
+  const c = furrow.plan(field, { width: 6, headlandPasses: 2, bearing: 0 });
+  assert.equal(a.summary.swath_count, 22);
+  assert.ok(b.summary.swath_count > 40);
+  assert.ok(Math.abs(c.summary.bearing_deg) < 1e-6);
+  assert.notEqual(c.summary.swath_count, a.summary.swath_count);
+});
+
+test("invalid inputs throw a FurrowError with a code", () => {
+  const expected = {
+    "hole-crossing-boundary.geojson": "hole_crossing_boundary",
+    "latitude-out-of-range.geojson": "coordinate_out_of_range",
+    "obstacle-outside-field.geojson": "obstacle_outside_field",
+    "self-intersecting-bowtie.geojson": "self_intersection",
+    "too-few-points.geojson": "too_few_points",
+    "zero-area.geojson": "zero_area",
+    "not-geojson.geojson": "invalid_json",
+    "nan-coordinates.geojson": "invalid_json",
+  };
+  for (const file of readdirSync(new URL("invalid/", fieldsUrl))) {
+    if (!(file in expected)) continue;
+    // Text in both cases: two of the files are not JSON at all.
+    const text = readFileSync(new URL(`invalid/${file}`, fieldsUrl), "utf8");
+    assert.throws(
+      () => furrow.plan(text),
+      (e) => e instanceof Error && e.name === "FurrowError" && e.code === expected[file],
+      file,
+    );
+  }
+  assert.throws(() => furrow.plan(readField("rectangle.geojson"), { width: -1 }), { code: "option_out_of_range" });
+  assert.throws(() => furrow.plan(readField("rectangle.geojson"), { widht: 3 }), { code: "invalid_option" });
+});
+
+test("the instance keeps planning after errors", () => {
+  for (let i = 0; i < 50; i++) {
+    assert.throws(() => furrow.plan("{"), { code: "invalid_json" });
+  }
+  assert.equal(furrow.plan(readField("square-1ha.geojson")).type, "FeatureCollection");
+});

@@ -1,0 +1,38 @@
+#!/usr/bin/env bash
+# Runs every test of furrow, installing what is missing first (scripts/setup.sh):
+#   formatting and lints; native unit, corpus, property and doc tests; the wasm build's tests in
+#   Node and in headless Chromium; the built npm package in Node and in Chromium; the viewer in
+#   Chromium (Playwright). Prints the time of each step.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+scripts/setup.sh rust browser npm
+
+started=$(date +%s)
+timings=()
+step() {
+  local name=$1
+  shift
+  printf '\n\033[1m== %s\033[0m\n' "$name"
+  local t0
+  t0=$(date +%s)
+  "$@"
+  timings+=("$(printf '%4ss  %s' $(( $(date +%s) - t0 )) "$name")")
+}
+
+wasm_test() {
+  CARGO_TARGET_WASM32_UNKNOWN_UNKNOWN_RUNNER=wasm-bindgen-test-runner \
+    WASM_BINDGEN_TEST_TIMEOUT=120 \
+    cargo test --target wasm32-unknown-unknown --test wasm "$@"
+}
+
+step "format" cargo fmt --check
+step "lints" cargo clippy --all-targets --quiet -- -D warnings
+step "native tests" cargo test
+step "wasm tests in Node" wasm_test
+step "wasm tests in Chromium" env WASM_BINDGEN_USE_BROWSER=1 bash -c "$(declare -f wasm_test); wasm_test"
+step "package build" scripts/build.sh
+step "package and viewer tests (Node, Chromium)" node --test --test-concurrency=1 pkg-tests/
+
+printf '\n\033[1m== all tests passed in %ss\033[0m\n' $(( $(date +%s) - started ))
+printf '%s\n' "${timings[@]}"

@@ -1,0 +1,169 @@
+//! The native command-line planner (`cargo run --example plan`), run as a user runs it.
+
+mod common;
+
+use common::corpus::fields_dir;
+use std::path::PathBuf;
+use std::process::{Command, Output};
+
+/// The example binary cargo built beside this test (`target/<profile>/examples/plan`).
+fn plan_cli() -> Command {
+    let exe = std::env::current_exe().expect("test executable");
+    let dir = exe.parent().and_then(|d| d.parent()).expect("target dir");
+    let bin: PathBuf = dir
+        .join("examples")
+        .join(format!("plan{}", std::env::consts::EXE_SUFFIX));
+    assert!(bin.exists(), "{} not built", bin.display());
+    Command::new(bin)
+}
+
+fn run(args: &[&str]) -> Output {
+    plan_cli().args(args).output().expect("runs")
+}
+
+fn field(name: &str) -> String {
+    fields_dir().join(name).display().to_string()
+}
+
+#[test]
+fn plans_the_rectangle_with_flags() {
+    let out = run(&[
+        &field("rectangle.geojson"),
+        "--width",
+        "6",
+        "--headland-passes",
+        "2",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let plan: serde_json::Value = serde_json::from_slice(&out.stdout).expect("GeoJSON on stdout");
+    assert_eq!(plan["type"], "FeatureCollection");
+    assert_eq!(plan["summary"]["swath_count"], 22);
+    let swaths = plan["features"]
+        .as_array()
+        .expect("features")
+        .iter()
+        .filter(|f| f["properties"]["kind"] == "swath")
+        .count();
+    assert_eq!(swaths, 22);
+}
+
+#[test]
+fn every_option_is_a_flag() {
+    // Flags become the options object JavaScript passes: each option in kebab-case is accepted.
+    let out = run(&[
+        &field("square-1ha.geojson"),
+        "--width=2.5",
+        "--headland-passes",
+        "3",
+        "--turn-radius",
+        "2.1",
+        "--bearing",
+        "30",
+        "--min-swath-length",
+        "4",
+        "--coordinates",
+        "wgs84",
+        "--summary",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let summary: serde_json::Value = serde_json::from_slice(&out.stdout).expect("JSON");
+    assert!((summary["bearing_deg"].as_f64().expect("bearing") - 30.0).abs() < 1e-9);
+    // --help lists each of them.
+    let help = String::from_utf8(run(&["--help"]).stdout).expect("utf8");
+    for (key, _, _) in furrow::options::OPTION_DOCS {
+        let flag: String = key
+            .chars()
+            .flat_map(|c| {
+                if c.is_uppercase() {
+                    vec!['-', c.to_ascii_lowercase()]
+                } else {
+                    vec![c]
+                }
+            })
+            .collect();
+        assert!(
+            help.contains(&format!("--{flag}")),
+            "--{flag} missing from --help"
+        );
+    }
+}
+
+#[test]
+fn invalid_input_exits_2_with_one_json_line() {
+    for (file, code) in [
+        (
+            "invalid/self-intersecting-bowtie.geojson",
+            "self_intersection",
+        ),
+        ("invalid/not-geojson.geojson", "invalid_json"),
+    ] {
+        let out = run(&[&field(file)]);
+        assert_eq!(out.status.code(), Some(2), "{file}");
+        let stderr = String::from_utf8(out.stderr).expect("utf8");
+        assert_eq!(stderr.lines().count(), 1, "{stderr}");
+        let e: serde_json::Value = serde_json::from_str(&stderr).expect("JSON line");
+        assert_eq!(e["code"], code);
+        assert!(e["message"].as_str().is_some_and(|m| !m.is_empty()));
+        assert!(out.stdout.is_empty());
+    }
+    let out = run(&[&field("rectangle.geojson"), "--widht", "6"]);
+    assert_eq!(out.status.code(), Some(2));
+    let e: serde_json::Value = serde_json::from_slice(&out.stderr).expect("JSON line");
+    assert_eq!(e["code"], "invalid_option");
+    assert!(e["message"].as_str().expect("message").contains("--widht"));
+    let out = run(&[&field("rectangle.geojson"), "--width", "-2"]);
+    assert_eq!(out.status.code(), Some(2));
+}
+
+#[test]
+fn writes_to_a_file_and_reads_standard_input() {
+    let dir = std::env::temp_dir().join(format!("furrow-cli-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let path = dir.join("plan.geojson");
+    let out = run(&[
+        &field("l-shape.geojson"),
+        "--out",
+        &path.display().to_string(),
+    ]);
+    assert!(out.status.success());
+    assert!(out.stdout.is_empty());
+    let written: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&path).expect("written")).expect("JSON");
+    assert_eq!(written["type"], "FeatureCollection");
+    std::fs::remove_dir_all(&dir).ok();
+
+    use std::io::Write;
+    let mut child = plan_cli()
+        .args(["-", "--summary"])
+        .stdin(std::process::Stdio::piped())
+        .stdout(std::process::Stdio::piped())
+        .spawn()
+        .expect("spawns");
+    let text = std::fs::read(fields_dir().join("square-1ha.geojson")).expect("field");
+    child
+        .stdin
+        .take()
+        .expect("stdin")
+        .write_all(&text)
+        .expect("writes");
+    let out = child.wait_with_output().expect("finishes");
+    assert!(out.status.success());
+    let summary: serde_json::Value = serde_json::from_slice(&out.stdout).expect("JSON");
+    assert!(summary["swath_count"].as_u64().expect("count") > 0);
+}
+
+#[test]
+fn a_missing_file_exits_1() {
+    let out = run(&["/nonexistent/field.geojson"]);
+    assert_eq!(out.status.code(), Some(1));
+    let e: serde_json::Value = serde_json::from_slice(&out.stderr).expect("JSON line");
+    assert_eq!(e["code"], "io_error");
+}

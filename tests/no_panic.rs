@@ -1,0 +1,118 @@
+//! The planner never panics, whatever polygon and options it is given: random star-shaped and
+//! arbitrary (often self-intersecting) rings, tiny to continental sizes, random obstacles and
+//! options. Every call returns a plan or a typed error other than `internal`.
+//!
+//! The regular suite runs a few hundred cases; set PROPTEST_CASES for a long run.
+
+use furrow::{plan_geojson, ErrorCode, PlanOptions};
+use proptest::prelude::*;
+
+fn ring_json(pts: &[(f64, f64)]) -> String {
+    let mut s = String::from("[");
+    for (x, y) in pts.iter().chain(pts.first()) {
+        s.push_str(&format!("[{x},{y}],"));
+    }
+    s.pop();
+    s.push(']');
+    s
+}
+
+/// A star-shaped ring around (lon, lat) with radii in metres (about), so it is simple.
+fn star(lon: f64, lat: f64, radii: &[f64]) -> Vec<(f64, f64)> {
+    let n = radii.len();
+    radii
+        .iter()
+        .enumerate()
+        .map(|(i, r)| {
+            let t = i as f64 / n as f64 * std::f64::consts::TAU;
+            let k = r / 111_000.0;
+            (
+                lon + k * t.cos() / lat.to_radians().cos().max(0.1),
+                lat + k * t.sin(),
+            )
+        })
+        .collect()
+}
+
+fn options() -> impl Strategy<Value = PlanOptions> {
+    (
+        0.05..60.0f64,
+        0u32..8,
+        0.0..30.0f64,
+        prop::option::of(-720.0..720.0f64),
+        prop::option::of(0.0..50.0f64),
+    )
+        .prop_map(
+            |(width, headland_passes, turn_radius, bearing_deg, min_swath_length)| PlanOptions {
+                width,
+                headland_passes,
+                turn_radius,
+                bearing_deg,
+                min_swath_length,
+                ..PlanOptions::default()
+            },
+        )
+}
+
+fn check(text: &str, options: &PlanOptions) -> Result<(), TestCaseError> {
+    match plan_geojson(text, options) {
+        Ok(plan) => {
+            prop_assert!(plan.summary.total_distance_m.is_finite());
+            prop_assert!(!plan.to_geojson_string().is_empty());
+        }
+        Err(e) => prop_assert_ne!(e.code, ErrorCode::Internal, "{}", e),
+    }
+    Ok(())
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 200, ..ProptestConfig::default() })]
+
+    #[test]
+    fn star_fields_with_obstacles(
+        lon in -179.0..179.0f64,
+        lat in -80.0..80.0f64,
+        scale in prop::sample::select(vec![0.001, 0.1, 1.0, 10.0, 100.0, 1000.0, 20_000.0]),
+        radii in prop::collection::vec(20.0..400.0f64, 3..24),
+        obstacle in prop::option::of((-150.0..150.0f64, -150.0..150.0f64, 1.0..60.0f64)),
+        options in options(),
+    ) {
+        let radii: Vec<f64> = radii.iter().map(|r| r * scale / 100.0).collect();
+        let mut features = vec![format!(
+            r#"{{"type":"Feature","properties":{{"role":"boundary"}},"geometry":{{"type":"Polygon","coordinates":[{}]}}}}"#,
+            ring_json(&star(lon, lat, &radii))
+        )];
+        if let Some((dx, dy, r)) = obstacle {
+            let k = scale / 100.0;
+            let (olon, olat) = (lon + dx * k / 111_000.0, lat + dy * k / 111_000.0);
+            features.push(format!(
+                r#"{{"type":"Feature","properties":{{"role":"obstacle"}},"geometry":{{"type":"Polygon","coordinates":[{}]}}}}"#,
+                ring_json(&star(olon, olat, &[r * k; 8]))
+            ));
+        }
+        let text = format!(r#"{{"type":"FeatureCollection","features":[{}]}}"#, features.join(","));
+        check(&text, &options)?;
+    }
+
+    #[test]
+    fn arbitrary_rings(
+        pts in prop::collection::vec((-200.0..200.0f64, -100.0..100.0f64), 0..12),
+        jitter in prop::sample::select(vec![1e-9, 1e-6, 1e-3, 1.0]),
+        options in options(),
+    ) {
+        // Points clustered near (24, 60) at random scales: mostly self-intersecting or degenerate.
+        let pts: Vec<(f64, f64)> = pts.iter().map(|(x, y)| (24.0 + x * jitter, 60.0 + y * jitter)).collect();
+        let text = format!(r#"{{"type":"Polygon","coordinates":[{}]}}"#, ring_json(&pts));
+        check(&text, &options)?;
+    }
+
+    #[test]
+    fn arbitrary_metric_rings(
+        pts in prop::collection::vec((-1e4..1e4f64, -1e4..1e4f64), 3..10),
+        options in options(),
+    ) {
+        let text = format!(r#"{{"type":"Polygon","coordinates":[{}]}}"#, ring_json(&pts));
+        let options = PlanOptions { coordinates: furrow::field::Coordinates::Metric, ..options };
+        check(&text, &options)?;
+    }
+}

@@ -1,0 +1,116 @@
+//! The planner compiled to WebAssembly, run by wasm-bindgen-test in Node and in headless Chromium
+//! (`WASM_BINDGEN_USE_BROWSER=1`): the Rust API on every corpus field, and the JavaScript API
+//! (`plan` as JavaScript calls it, errors as JavaScript sees them).
+#![cfg(target_arch = "wasm32")]
+
+use furrow::bindings::{default_options, plan_js, version};
+use furrow::{plan_geojson, PlanOptions};
+use js_sys::{Reflect, JSON};
+use wasm_bindgen::{JsCast, JsValue};
+use wasm_bindgen_test::wasm_bindgen_test;
+
+macro_rules! corpus {
+    ($($name:literal),* $(,)?) => {
+        [$(($name, include_str!(concat!("fields/", $name, ".geojson")))),*]
+    };
+}
+
+const FIELDS: [(&str, &str); 21] = corpus!(
+    "boomerang",
+    "c-shape-escarpment",
+    "curved-edge",
+    "gps-traced-600-vertices",
+    "h-shape",
+    "l-shape",
+    "large-250ha-10-obstacles",
+    "many-bays",
+    "narrow-curved-strip",
+    "no-straight-edge",
+    "obstacle-types",
+    "obstacles-1",
+    "obstacles-2",
+    "obstacles-3",
+    "obstacles-4",
+    "obstacles-5",
+    "rectangle",
+    "skew-quad",
+    "square-1ha",
+    "t-shape",
+    "underdrain",
+);
+
+fn get(v: &JsValue, key: &str) -> JsValue {
+    Reflect::get(v, &JsValue::from_str(key)).expect("readable property")
+}
+
+#[wasm_bindgen_test]
+fn every_corpus_field_plans_in_wasm() {
+    for (name, text) in FIELDS {
+        let plan =
+            plan_geojson(text, &PlanOptions::default()).unwrap_or_else(|e| panic!("{name}: {e}"));
+        assert!(plan.summary.swath_count > 0, "{name}");
+        assert!(
+            plan.summary.planning_ms > 0.0,
+            "{name}: the clock works in wasm"
+        );
+    }
+}
+
+#[wasm_bindgen_test]
+fn js_api_returns_a_feature_collection() {
+    let field = JSON::parse(FIELDS[16].1).expect("rectangle is JSON");
+    let options = JSON::parse(r#"{"width": 6, "headlandPasses": 2}"#).expect("JSON");
+    let plan = plan_js(field, options).expect("plans");
+    assert_eq!(get(&plan, "type"), "FeatureCollection");
+    let summary = get(&plan, "summary");
+    assert_eq!(get(&summary, "swath_count").as_f64(), Some(22.0));
+    let features = js_sys::Array::from(&get(&plan, "features"));
+    assert!(features.length() > 22);
+    // GeoJSON text is accepted as well as objects, and options may be left out.
+    let again = plan_js(JsValue::from_str(FIELDS[16].1), JsValue::UNDEFINED).expect("plans");
+    assert_eq!(
+        get(&get(&again, "summary"), "swath_count").as_f64(),
+        Some(22.0)
+    );
+}
+
+#[wasm_bindgen_test]
+fn js_errors_carry_a_code_and_a_place() {
+    let bowtie = r#"{"type":"Polygon","coordinates":[[[24.05,60.25],[24.0518,60.2509],[24.0518,60.25],[24.05,60.2509],[24.05,60.25]]]}"#;
+    let err = plan_js(JsValue::from_str(bowtie), JsValue::UNDEFINED).expect_err("bowtie fails");
+    assert!(err.is_instance_of::<js_sys::Error>());
+    assert_eq!(get(&err, "code"), "self_intersection");
+    assert_eq!(get(&err, "name"), "FurrowError");
+    assert_eq!(get(&err, "feature").as_f64(), Some(0.0));
+    assert!(js_sys::Array::is_array(&get(&err, "coordinate")));
+
+    let typo = JSON::parse(r#"{"widht": 3}"#).expect("JSON");
+    let err = plan_js(JsValue::from_str(FIELDS[16].1), typo).expect_err("unknown option");
+    assert_eq!(get(&err, "code"), "invalid_option");
+
+    let err = plan_js(JsValue::from_str("{"), JsValue::UNDEFINED).expect_err("not JSON");
+    assert_eq!(get(&err, "code"), "invalid_json");
+
+    // NaN cannot be written in JSON, but a JavaScript object can hold it.
+    let nan = JSON::parse(r#"{"type":"Polygon","coordinates":[[[0,0],[1,0],[1,1],[0,0]]]}"#)
+        .expect("JSON");
+    let ring = get(&get(&nan, "coordinates"), "0");
+    Reflect::set(
+        &get(&ring, "1"),
+        &JsValue::from(0),
+        &JsValue::from(f64::NAN),
+    )
+    .expect("set");
+    let err = plan_js(nan, JsValue::UNDEFINED).expect_err("NaN fails");
+    assert_eq!(get(&err, "code"), "non_finite_coordinate");
+    assert_eq!(get(&err, "vertex").as_f64(), Some(1.0));
+}
+
+#[wasm_bindgen_test]
+fn defaults_and_version() {
+    let d = default_options().expect("defaults");
+    assert_eq!(get(&d, "width").as_f64(), Some(6.0));
+    assert_eq!(get(&d, "headlandPasses").as_f64(), Some(2.0));
+    assert!(get(&d, "bearing").is_null());
+    assert_eq!(version(), env!("CARGO_PKG_VERSION"));
+}
