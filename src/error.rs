@@ -53,6 +53,28 @@ pub enum ErrorCode {
 }
 
 impl ErrorCode {
+    /// Every code, for documentation and tests.
+    pub const ALL: &'static [ErrorCode] = &[
+        ErrorCode::InvalidJson,
+        ErrorCode::InvalidGeojson,
+        ErrorCode::NoBoundary,
+        ErrorCode::AmbiguousBoundary,
+        ErrorCode::UnsupportedGeometry,
+        ErrorCode::NonFiniteCoordinate,
+        ErrorCode::CoordinateOutOfRange,
+        ErrorCode::TooFewPoints,
+        ErrorCode::ZeroArea,
+        ErrorCode::SelfIntersection,
+        ErrorCode::ObstacleOutsideField,
+        ErrorCode::HoleCrossingBoundary,
+        ErrorCode::InvalidOption,
+        ErrorCode::OptionOutOfRange,
+        ErrorCode::InputTooLarge,
+        ErrorCode::FieldTooLarge,
+        ErrorCode::HeadlandConsumesField,
+        ErrorCode::Internal,
+    ];
+
     /// The code as it appears in JSON and in JavaScript's `error.code`.
     pub fn as_str(self) -> &'static str {
         match self {
@@ -194,6 +216,40 @@ pub enum WarningCode {
     StraightConnections,
 }
 
+impl WarningCode {
+    /// Every code, for documentation and tests.
+    pub const ALL: &'static [WarningCode] = &[
+        WarningCode::RingClosed,
+        WarningCode::RepeatedVertices,
+        WarningCode::CollinearVertices,
+        WarningCode::SpikesRemoved,
+        WarningCode::RingReoriented,
+        WarningCode::ObstacleClipped,
+        WarningCode::ObstaclesMerged,
+        WarningCode::ProhibitedClipped,
+        WarningCode::IgnoredFeature,
+        WarningCode::ShortSwathsDropped,
+        WarningCode::StraightConnections,
+    ];
+
+    /// The code as it appears in JSON.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            WarningCode::RingClosed => "ring_closed",
+            WarningCode::RepeatedVertices => "repeated_vertices",
+            WarningCode::CollinearVertices => "collinear_vertices",
+            WarningCode::SpikesRemoved => "spikes_removed",
+            WarningCode::RingReoriented => "ring_reoriented",
+            WarningCode::ObstacleClipped => "obstacle_clipped",
+            WarningCode::ObstaclesMerged => "obstacles_merged",
+            WarningCode::ProhibitedClipped => "prohibited_clipped",
+            WarningCode::IgnoredFeature => "ignored_feature",
+            WarningCode::ShortSwathsDropped => "short_swaths_dropped",
+            WarningCode::StraightConnections => "straight_connections",
+        }
+    }
+}
+
 /// Something the planner repaired or simplified, or a property of the plan the user should know.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Warning {
@@ -229,12 +285,11 @@ mod tests {
 
     #[test]
     fn codes_serialise_as_their_stable_strings() {
-        for code in [
-            ErrorCode::InvalidJson,
-            ErrorCode::SelfIntersection,
-            ErrorCode::HeadlandConsumesField,
-            ErrorCode::Internal,
-        ] {
+        for &code in ErrorCode::ALL {
+            let json = serde_json::to_string(&code).unwrap();
+            assert_eq!(json, format!("\"{}\"", code.as_str()));
+        }
+        for &code in WarningCode::ALL {
             let json = serde_json::to_string(&code).unwrap();
             assert_eq!(json, format!("\"{}\"", code.as_str()));
         }

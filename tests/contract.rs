@@ -1,0 +1,67 @@
+//! The documented contract stays in step with the code: every error and warning code, summary
+//! member and option appears in the README and in the TypeScript definitions of the package.
+
+use furrow::options::OPTION_DOCS;
+use furrow::{plan_geojson, ErrorCode, PlanOptions, WarningCode};
+
+fn read(path: &str) -> String {
+    std::fs::read_to_string(std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(path))
+        .expect("readable")
+}
+
+#[test]
+fn every_error_code_is_documented_and_typed() {
+    let readme = read("README.md");
+    let dts = read("src/bindings.d.ts");
+    for code in ErrorCode::ALL {
+        let c = code.as_str();
+        assert!(
+            readme.contains(&format!("| `{c}` |")),
+            "README error reference lacks {c}"
+        );
+        assert!(
+            dts.contains(&format!("\"{c}\"")),
+            "bindings.d.ts ErrorCode lacks {c}"
+        );
+    }
+}
+
+#[test]
+fn every_warning_code_is_documented() {
+    let readme = read("README.md");
+    for code in WarningCode::ALL {
+        assert!(
+            readme.contains(&format!("`{}`", code.as_str())),
+            "README lacks {code:?}"
+        );
+    }
+}
+
+#[test]
+fn every_summary_member_and_option_is_typed_and_documented() {
+    let readme = read("README.md");
+    let dts = read("src/bindings.d.ts");
+    let text = read("tests/fields/square-1ha.geojson");
+    let plan = plan_geojson(&text, &PlanOptions::default()).expect("plans");
+    let summary = serde_json::to_value(&plan.summary).expect("json");
+    for key in summary.as_object().expect("object").keys() {
+        assert!(
+            dts.contains(&format!("  {key}: number;")),
+            "PlanSummary lacks {key}"
+        );
+        assert!(
+            readme.contains(&format!("`{key}`")),
+            "README lacks summary.{key}"
+        );
+    }
+    for (key, _, _) in OPTION_DOCS {
+        assert!(
+            dts.contains(&format!("  {key}?:")),
+            "PlanOptions lacks {key}"
+        );
+        assert!(
+            readme.contains(&format!("| `{key}` |")),
+            "README options table lacks {key}"
+        );
+    }
+}
