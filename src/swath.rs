@@ -109,7 +109,7 @@ pub fn generate(
     let mut dropped = 0;
     if let Some((lo, hi)) = frame.across_extent(inner) {
         let lines = (hi - lo) / width;
-        if !(lines <= MAX_SWATH_LINES as f64) {
+        if lines.is_nan() || lines > MAX_SWATH_LINES as f64 {
             return Err(PlanError::new(
                 ErrorCode::FieldTooLarge,
                 format!(
