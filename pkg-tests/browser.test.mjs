@@ -3,32 +3,13 @@
 // corpus field and reports errors as FurrowErrors.
 import { test } from "node:test";
 import assert from "node:assert/strict";
-import { execFileSync } from "node:child_process";
 import { existsSync } from "node:fs";
-import { chromium } from "playwright-core";
+import { join } from "node:path";
 import { startServer } from "../scripts/serve.mjs";
-
-const SITE = "target/site";
-
-export async function launchChromium() {
-  const executablePath = execFileSync("which", ["chromium"], { encoding: "utf8" }).trim();
-  return chromium.launch({
-    executablePath,
-    headless: true,
-    args: [
-      "--no-sandbox",
-      "--disable-gpu",
-      "--disable-quic",
-      "--no-first-run",
-      "--disable-background-networking",
-      "--disable-component-update",
-      "--disable-sync",
-    ],
-  });
-}
+import { launchChromium, SITE } from "./support.mjs";
 
 test("the package plans in Chromium", { timeout: 60_000 }, async () => {
-  assert.ok(existsSync(`${SITE}/pkg/furrow.js`), "target/site is missing: run scripts/build.sh first");
+  assert.ok(existsSync(join(SITE, "pkg/furrow.js")), "target/site is missing: run scripts/build.sh first");
   const server = await startServer(SITE, 0);
   const browser = await launchChromium();
   try {
