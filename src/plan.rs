@@ -106,8 +106,12 @@ pub(crate) fn plan_stages(
         warnings.push(Warning::new(
             WarningCode::ShortSwathsDropped,
             format!(
-                "{} swath pieces shorter than {:.1} m were left to the headland passes",
-                swaths.dropped,
+                "{} shorter than {:.1} m left to the headland passes",
+                if swaths.dropped == 1 {
+                    "1 swath piece".to_string()
+                } else {
+                    format!("{} swath pieces", swaths.dropped)
+                },
                 options.min_swath_length_m()
             ),
         ));

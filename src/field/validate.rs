@@ -428,8 +428,8 @@ fn report_repairs(what: &str, feature: usize, r: RingRepairs, warnings: &mut Vec
         warn(
             WarningCode::RepeatedVertices,
             format!(
-                "{} repeated vertices of the {what} (feature {feature}) were removed",
-                r.repeated
+                "{} of the {what} (feature {feature}) removed",
+                count(r.repeated, "repeated vertex", "repeated vertices")
             ),
         );
     }
@@ -437,8 +437,8 @@ fn report_repairs(what: &str, feature: usize, r: RingRepairs, warnings: &mut Vec
         warn(
             WarningCode::CollinearVertices,
             format!(
-                "{} vertices on straight edges of the {what} (feature {feature}) were removed",
-                r.collinear
+                "{} on straight edges of the {what} (feature {feature}) removed",
+                count(r.collinear, "vertex", "vertices")
             ),
         );
     }
@@ -446,11 +446,16 @@ fn report_repairs(what: &str, feature: usize, r: RingRepairs, warnings: &mut Vec
         warn(
             WarningCode::SpikesRemoved,
             format!(
-                "{} spikes of the {what} (feature {feature}) were removed",
-                r.spikes
+                "{} of the {what} (feature {feature}) removed (the outline went out and straight back)",
+                count(r.spikes, "spike", "spikes")
             ),
         );
     }
+}
+
+/// "1 spike", "3 spikes".
+fn count(n: usize, one: &str, many: &str) -> String {
+    format!("{n} {}", if n == 1 { one } else { many })
 }
 
 fn zero_area(p: &InputPolygon, r: usize, min_m2: f64) -> PlanError {
