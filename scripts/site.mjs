@@ -8,7 +8,7 @@ import { join } from "node:path";
 const out = "target/site";
 await rm(out, { recursive: true, force: true });
 await mkdir(join(out, "fields"), { recursive: true });
-await cp("www", out, { recursive: true, filter: (src) => !src.includes(`${"www"}/tests`) });
+await cp("www", out, { recursive: true });
 await cp("pkg", join(out, "pkg"), { recursive: true });
 
 // The README table: | file | area ha | vertices | obstacles | prohibited | width m | passes | radius m | note |

@@ -44,11 +44,12 @@ pub struct Blocks {
 ///     exterior: [(x: 0., y: 0.), (x: 60., y: 0.), (x: 60., y: 100.), (x: 0., y: 100.)],
 ///     interiors: [[(x: 20., y: 40.), (x: 40., y: 40.), (x: 40., y: 60.), (x: 20., y: 60.)]],
 /// );
-/// let swaths = generate(&MultiPolygon::new(vec![field]), 0.0, 6.0, 6.0).unwrap();
+/// let swaths = generate(&MultiPolygon::new(vec![field]), 0.0, 6.0, 6.0)?;
 /// let blocks = cluster_swaths(&swaths);
 /// assert_eq!(blocks.blocks.len(), 4);
 /// let total: usize = blocks.blocks.iter().map(|b| b.swaths.len()).sum();
 /// assert_eq!(total, swaths.swaths.len());
+/// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn cluster_swaths(swaths: &Swaths) -> Blocks {
     let s = &swaths.swaths;

@@ -33,9 +33,10 @@ pub enum DirectionRule {
 /// // A field much longer east-west than north-south: the longest edge runs east (90 degrees).
 /// let text = r#"{"type": "Polygon", "coordinates": [[[24.05, 60.25], [24.06, 60.25],
 ///     [24.06, 60.251], [24.05, 60.251], [24.05, 60.25]]]}"#;
-/// let (field, _) = Field::from_geojson_str(text).unwrap();
+/// let (field, _) = Field::from_geojson_str(text)?;
 /// let b = choose_bearing(&field, DirectionRule::LongestEdge { tolerance_m: 3.0 });
 /// assert!((b.to_degrees() - 90.0).abs() < 0.1);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn choose_bearing(field: &Field, rule: DirectionRule) -> f64 {
     match rule {

@@ -47,12 +47,13 @@ pub struct Headlands {
 /// // A rectangle of about 333 m by 112 m.
 /// let text = r#"{"type": "Polygon", "coordinates": [[[24.05, 60.25], [24.056, 60.25],
 ///     [24.056, 60.251], [24.05, 60.251], [24.05, 60.25]]]}"#;
-/// let (field, _) = Field::from_geojson_str(text).unwrap();
-/// let headlands = constant_width(&field, 6.0, 2).unwrap();
+/// let (field, _) = Field::from_geojson_str(text)?;
+/// let headlands = constant_width(&field, 6.0, 2)?;
 /// assert_eq!(headlands.passes.len(), 2);
 /// // The headland is a 12 m wide band around the field.
 /// let perimeter = 2.0 * (333.0 + 111.5);
 /// assert!((headlands.area_m2 / (12.0 * perimeter) - 1.0).abs() < 0.06);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn constant_width(field: &Field, width: f64, passes: u32) -> Result<Headlands, PlanError> {
     let boundary = &field.boundary;

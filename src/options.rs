@@ -12,11 +12,12 @@ use serde::{Deserialize, Serialize};
 /// ```
 /// use furrow::PlanOptions;
 ///
-/// let options: PlanOptions = serde_json::from_str(r#"{"width": 4.5, "bearing": 30}"#).unwrap();
+/// let options: PlanOptions = serde_json::from_str(r#"{"width": 4.5, "bearing": 30}"#)?;
 /// assert_eq!(options.width, 4.5);
 /// assert_eq!(options.bearing_deg, Some(30.0));
 /// assert_eq!(options.headland_passes, PlanOptions::default().headland_passes);
-/// options.validate().unwrap();
+/// options.validate()?;
+/// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "camelCase", default, deny_unknown_fields)]

@@ -77,11 +77,12 @@ const MIN_CONNECTOR_M: f64 = 1e-6;
 /// use geo::{polygon, MultiPolygon};
 ///
 /// let field = polygon![(x: 0., y: 0.), (x: 30., y: 0.), (x: 30., y: 100.), (x: 0., y: 100.)];
-/// let swaths = generate(&MultiPolygon::new(vec![field]), 0.0, 6.0, 6.0).unwrap();
+/// let swaths = generate(&MultiPolygon::new(vec![field]), 0.0, 6.0, 6.0)?;
 /// let route = boustrophedon(&swaths, &cluster_swaths(&swaths), &[], None);
 /// let path = build_path(&route, &swaths, &[]);
 /// let turns = path.segments.iter().filter(|s| s.kind == SegmentKind::Turn).count();
 /// assert_eq!(turns, 4); // five swaths, four turns between them
+/// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn build_path(route: &Route, swaths: &Swaths, passes: &[HeadlandPass]) -> Path {
     let mut segments: Vec<PathSegment> = Vec::with_capacity(route.steps.len() * 2);

@@ -45,12 +45,13 @@ pub struct Plan {
 ///
 /// let text = r#"{"type": "Polygon", "coordinates": [[[24.05, 60.25], [24.056, 60.25],
 ///     [24.056, 60.252], [24.05, 60.252], [24.05, 60.25]]]}"#;
-/// let (field, _) = Field::from_geojson_str(text).unwrap();
+/// let (field, _) = Field::from_geojson_str(text)?;
 /// let options = PlanOptions { width: 6.0, headland_passes: 2, bearing_deg: Some(0.0), ..Default::default() };
-/// let plan = plan(field, &options).unwrap();
+/// let plan = plan(field, &options)?;
 /// // About 333 m east-west, less two 12 m headlands, in 6 m swaths running north.
 /// assert_eq!(plan.summary.swath_count, 52);
 /// assert_eq!(plan.summary.turn_count, 51);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn plan(field: Field, options: &PlanOptions) -> Result<Plan, PlanError> {
     let started = Instant::now();
@@ -67,9 +68,10 @@ pub fn plan(field: Field, options: &PlanOptions) -> Result<Plan, PlanError> {
 ///
 /// let text = r#"{"type": "Polygon", "coordinates": [[[24.05, 60.25], [24.056, 60.25],
 ///     [24.056, 60.252], [24.05, 60.252], [24.05, 60.25]]]}"#;
-/// let plan = plan_geojson(text, &PlanOptions::default()).unwrap();
+/// let plan = plan_geojson(text, &PlanOptions::default())?;
 /// let geojson = plan.to_geojson_string();
 /// assert!(geojson.contains(r#""kind":"swath""#));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn plan_geojson(text: &str, options: &PlanOptions) -> Result<Plan, PlanError> {
     let started = Instant::now();

@@ -48,7 +48,7 @@ pub struct Route {
 /// use geo::{polygon, MultiPolygon};
 ///
 /// let field = polygon![(x: 0., y: 0.), (x: 30., y: 0.), (x: 30., y: 100.), (x: 0., y: 100.)];
-/// let swaths = generate(&MultiPolygon::new(vec![field]), 0.0, 6.0, 6.0).unwrap();
+/// let swaths = generate(&MultiPolygon::new(vec![field]), 0.0, 6.0, 6.0)?;
 /// let blocks = cluster_swaths(&swaths);
 /// let route = boustrophedon(&swaths, &blocks, &[], None);
 /// let reversed: Vec<bool> = route.steps.iter().map(|s| match s {
@@ -56,6 +56,7 @@ pub struct Route {
 ///     _ => unreachable!(),
 /// }).collect();
 /// assert_eq!(reversed, vec![false, true, false, true, false]);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn boustrophedon(
     swaths: &Swaths,

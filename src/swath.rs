@@ -93,10 +93,11 @@ pub fn line_offsets(lo: f64, hi: f64, width: f64) -> Vec<f64> {
 ///
 /// // A 30 m wide, 100 m long strip running north, worked 6 m wide: 5 swaths of 100 m.
 /// let strip = polygon![(x: 0., y: 0.), (x: 30., y: 0.), (x: 30., y: 100.), (x: 0., y: 100.)];
-/// let swaths = generate(&MultiPolygon::new(vec![strip]), 0.0, 6.0, 6.0).unwrap();
+/// let swaths = generate(&MultiPolygon::new(vec![strip]), 0.0, 6.0, 6.0)?;
 /// assert_eq!(swaths.swaths.len(), 5);
 /// assert!((swaths.swaths[0].centre.start.x - 3.0).abs() < 1e-9);
 /// assert!((swaths.swaths[0].length() - 100.0).abs() < 1e-9);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn generate(
     inner: &MultiPolygon,

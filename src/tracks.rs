@@ -35,11 +35,12 @@ pub struct Lane {
 ///
 /// let text = r#"{"type": "Polygon", "coordinates": [[[24.05, 60.25], [24.056, 60.25],
 ///     [24.056, 60.252], [24.05, 60.252], [24.05, 60.25]]]}"#;
-/// let plan = plan_geojson(text, &PlanOptions::default()).unwrap();
+/// let plan = plan_geojson(text, &PlanOptions::default())?;
 /// let lanes = lanes(&plan);
 /// let passes = lanes.iter().filter(|l| l.kind == LaneKind::HeadlandPass).count();
 /// assert_eq!(passes, 2);
 /// assert_eq!(lanes.len() - passes, plan.swaths.swaths.len());
+/// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn lanes(plan: &Plan) -> Vec<Lane> {
     plan.route

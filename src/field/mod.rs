@@ -82,9 +82,10 @@ impl Field {
     ///
     /// let text = r#"{"type": "Polygon", "coordinates": [[[24.05, 60.25], [24.06, 60.25],
     ///     [24.06, 60.255], [24.05, 60.255], [24.05, 60.25]]]}"#;
-    /// let (field, warnings) = Field::from_geojson_str(text).unwrap();
+    /// let (field, warnings) = Field::from_geojson_str(text)?;
     /// assert!((field.area_m2() / 10_000.0 - 30.9).abs() < 0.1); // hectares
     /// assert!(warnings.is_empty());
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
     pub fn from_geojson_str(text: &str) -> Result<(Field, Vec<Warning>), PlanError> {
         Self::from_geojson_str_in(text, Coordinates::Wgs84)

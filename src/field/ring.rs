@@ -186,8 +186,9 @@ impl Cross for Edge {
 ///     coord! { x: 10.0, y: 0.0 },
 ///     coord! { x: 0.0, y: 10.0 },
 /// ];
-/// let (p, _, _) = find_self_intersection(&bowtie).unwrap();
+/// let (p, _, _) = find_self_intersection(&bowtie).ok_or("no crossing")?;
 /// assert!((p.x - 5.0).abs() < 1e-9 && (p.y - 5.0).abs() < 1e-9);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn find_self_intersection(ring: &[Coord]) -> Option<(Coord, usize, usize)> {
     let n = ring.len();
