@@ -24,6 +24,11 @@ export interface PlanOptions {
    * reverse are the same direction). `null` or absent: along the longest boundary edge.
    */
   bearing?: number | null;
+  /**
+   * Driving directions that may not be used anywhere, as `[from, to]` compass bearings in degrees
+   * (clockwise from `from` to `to`; a range forbids the reverse directions too). Default none.
+   */
+  forbiddenBearings?: [number, number][];
   /** Swath pieces shorter than this (metres) are left to the headland. Default: one width. */
   minSwathLength?: number | null;
   /** Coordinates of the input and the plan. Default `"wgs84"` (longitude, latitude). */
@@ -125,6 +130,9 @@ export type ErrorCode =
   | "input_too_large"
   | "field_too_large"
   | "headland_consumes_field"
+  | "no_allowed_direction"
+  | "bearing_forbidden"
+  | "coordinates_swapped"
   | "internal";
 
 /** What `plan` throws: an Error named "FurrowError" with a stable code and the place in the input. */

@@ -48,6 +48,13 @@ pub enum ErrorCode {
     FieldTooLarge,
     /// The headland passes leave no inner field to put swaths in.
     HeadlandConsumesField,
+    /// Forbidden bearing ranges (global, or of one prohibited region) forbid every direction.
+    NoAllowedDirection,
+    /// The fixed bearing asked for lies in a forbidden range.
+    BearingForbidden,
+    /// The field's coordinates look like [latitude, longitude]: as given the field lies in the
+    /// sea, swapped it lies on land.
+    CoordinatesSwapped,
     /// A failure inside the planner that input should never cause; please report it.
     Internal,
 }
@@ -72,6 +79,9 @@ impl ErrorCode {
         ErrorCode::InputTooLarge,
         ErrorCode::FieldTooLarge,
         ErrorCode::HeadlandConsumesField,
+        ErrorCode::NoAllowedDirection,
+        ErrorCode::BearingForbidden,
+        ErrorCode::CoordinatesSwapped,
         ErrorCode::Internal,
     ];
 
@@ -95,6 +105,9 @@ impl ErrorCode {
             ErrorCode::InputTooLarge => "input_too_large",
             ErrorCode::FieldTooLarge => "field_too_large",
             ErrorCode::HeadlandConsumesField => "headland_consumes_field",
+            ErrorCode::NoAllowedDirection => "no_allowed_direction",
+            ErrorCode::BearingForbidden => "bearing_forbidden",
+            ErrorCode::CoordinatesSwapped => "coordinates_swapped",
             ErrorCode::Internal => "internal",
         }
     }
@@ -206,6 +219,10 @@ pub enum WarningCode {
     ObstacleClipped,
     /// Overlapping obstacles were merged into one.
     ObstaclesMerged,
+    /// A dense outline (GNSS-recorded) was simplified to a tolerance tied to the working width.
+    OutlineSimplified,
+    /// The field lies far out at sea: its coordinates are probably wrong.
+    FieldAtSea,
     /// A prohibited region reached over the field boundary; only its part inside is kept.
     ProhibitedClipped,
     /// Features the planner does not use (unknown role, not a polygon) were ignored.
@@ -226,6 +243,8 @@ impl WarningCode {
         WarningCode::RingReoriented,
         WarningCode::ObstacleClipped,
         WarningCode::ObstaclesMerged,
+        WarningCode::OutlineSimplified,
+        WarningCode::FieldAtSea,
         WarningCode::ProhibitedClipped,
         WarningCode::IgnoredFeature,
         WarningCode::ShortSwathsDropped,
@@ -242,6 +261,8 @@ impl WarningCode {
             WarningCode::RingReoriented => "ring_reoriented",
             WarningCode::ObstacleClipped => "obstacle_clipped",
             WarningCode::ObstaclesMerged => "obstacles_merged",
+            WarningCode::OutlineSimplified => "outline_simplified",
+            WarningCode::FieldAtSea => "field_at_sea",
             WarningCode::ProhibitedClipped => "prohibited_clipped",
             WarningCode::IgnoredFeature => "ignored_feature",
             WarningCode::ShortSwathsDropped => "short_swaths_dropped",

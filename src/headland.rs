@@ -141,6 +141,7 @@ mod tests {
                 .collect(),
             prohibited: vec![],
             name: None,
+            feature: 0,
             frame: Frame::Metric,
         }
     }

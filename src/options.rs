@@ -3,6 +3,7 @@
 
 use crate::error::{ErrorCode, PlanError};
 use crate::field::Coordinates;
+use crate::geometry::{forbids_every_direction, BearingRange};
 use serde::{Deserialize, Serialize};
 
 /// How the field is to be planned. Every option has a default; JavaScript passes them as an object
@@ -33,6 +34,10 @@ pub struct PlanOptions {
     /// bearing and its reverse are the same direction). `None` follows the longest boundary edge.
     #[serde(rename = "bearing")]
     pub bearing_deg: Option<f64>,
+    /// Driving directions that may not be used anywhere in the field (e.g. along drainage
+    /// laterals), as compass bearing ranges; a range forbids the reverse directions too.
+    #[serde(rename = "forbiddenBearings")]
+    pub forbidden_bearings_deg: Vec<BearingRange>,
     /// Swath pieces shorter than this (metres) are not worked as swaths; `None` means one working
     /// width. The headland passes cover what they leave.
     pub min_swath_length: Option<f64>,
@@ -47,6 +52,7 @@ impl Default for PlanOptions {
             headland_passes: 2,
             turn_radius: 8.0,
             bearing_deg: None,
+            forbidden_bearings_deg: Vec::new(),
             min_swath_length: None,
             coordinates: Coordinates::Wgs84,
         }
@@ -75,6 +81,11 @@ pub const OPTION_DOCS: &[(&str, &str, &str)] = &[
         "bearing",
         "degrees",
         "driving direction as a compass bearing, 0 = north (default: along the longest boundary edge)",
+    ),
+    (
+        "forbiddenBearings",
+        "[[from,to],...]",
+        "driving directions not to use, as compass bearing ranges in degrees; each forbids the reverse too (default none)",
     ),
     (
         "minSwathLength",
@@ -132,6 +143,19 @@ impl PlanOptions {
             if !b.is_finite() {
                 return out_of_range("bearing", format!("{b}"), "a finite number of degrees");
             }
+        }
+        if let Some(r) = self.forbidden_bearings_deg.iter().find(|r| !r.is_finite()) {
+            return out_of_range(
+                "forbiddenBearings",
+                format!("[{}, {}]", r.from_deg, r.to_deg),
+                "pairs of finite compass bearings",
+            );
+        }
+        if forbids_every_direction(&self.forbidden_bearings_deg) {
+            return Err(PlanError::new(
+                ErrorCode::NoAllowedDirection,
+                "option `forbiddenBearings` forbids every driving direction; leave at least one range of directions open",
+            ));
         }
         if let Some(m) = self.min_swath_length {
             if !(m.is_finite() && m >= 0.0) {
@@ -191,6 +215,18 @@ mod tests {
             assert_eq!(e.code, ErrorCode::OptionOutOfRange, "{text}");
         }
         let e = PlanOptions::from_json_str(r#"{"headlandPasses": -1}"#).unwrap_err();
+        assert_eq!(e.code, ErrorCode::InvalidOption);
+    }
+
+    #[test]
+    fn forbidden_bearings_that_leave_no_direction_are_refused() {
+        let ok =
+            PlanOptions::from_json_str(r#"{"forbiddenBearings": [[20, 70], [200, 250]]}"#).unwrap();
+        assert_eq!(ok.forbidden_bearings_deg.len(), 2);
+        let e = PlanOptions::from_json_str(r#"{"forbiddenBearings": [[0, 90], [80, 185]]}"#)
+            .unwrap_err();
+        assert_eq!(e.code, ErrorCode::NoAllowedDirection);
+        let e = PlanOptions::from_json_str(r#"{"forbiddenBearings": [[0, 90, 4]]}"#).unwrap_err();
         assert_eq!(e.code, ErrorCode::InvalidOption);
     }
 

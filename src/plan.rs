@@ -6,6 +6,7 @@
 use crate::decompose::{cluster_swaths, Blocks};
 use crate::direction::{choose_bearing, DirectionRule};
 use crate::error::{PlanError, Warning, WarningCode};
+use crate::field::simplify::tolerance_for_width;
 use crate::field::Field;
 use crate::headland::{constant_width, Headlands};
 use crate::metrics::{summarise, Summary};
@@ -84,12 +85,13 @@ pub fn plan_geojson(text: &str, options: &PlanOptions) -> Result<Plan, PlanError
 
 /// Runs the stages on a field read by the caller, keeping the caller's warnings first.
 pub(crate) fn plan_stages(
-    field: Field,
+    mut field: Field,
     options: &PlanOptions,
     mut warnings: Vec<Warning>,
 ) -> Result<Plan, PlanError> {
     options.validate()?;
     let width = options.width;
+    warnings.extend(field.simplify(tolerance_for_width(width)));
     let headlands = constant_width(&field, width, options.headland_passes)?;
     let rule = match options.bearing_deg {
         Some(bearing_deg) => DirectionRule::Fixed { bearing_deg },
@@ -97,7 +99,7 @@ pub(crate) fn plan_stages(
             tolerance_m: width / 2.0,
         },
     };
-    let bearing = choose_bearing(&field, rule);
+    let bearing = choose_bearing(&field, rule, &options.forbidden_bearings_deg)?;
     let swaths = generate(
         &headlands.inner,
         bearing,

@@ -67,6 +67,8 @@ fn every_option_is_a_flag() {
         "4",
         "--coordinates",
         "wgs84",
+        "--forbidden-bearings",
+        "[[80,100]]",
         "--summary",
     ]);
     assert!(

@@ -6,10 +6,13 @@
 //! with a typed error ([`validate`], [`ring`]).
 
 pub mod geojson;
+pub mod landmask;
 pub mod projection;
 pub mod ring;
+pub mod simplify;
 pub mod validate;
 
+pub use crate::geometry::BearingRange;
 pub use projection::{Frame, TransverseMercator};
 
 use crate::error::{PlanError, Warning};
@@ -39,6 +42,8 @@ pub struct Field {
     pub prohibited: Vec<ProhibitedRegion>,
     /// The boundary feature's `name`, if it had one.
     pub name: Option<String>,
+    /// Index of the boundary feature in the input's `features`.
+    pub feature: usize,
     /// How to get from the input's coordinates to metres and back.
     pub frame: Frame,
 }
@@ -61,15 +66,6 @@ pub struct ProhibitedRegion {
     pub forbidden: Vec<BearingRange>,
     /// Index of the input feature it came from.
     pub feature: usize,
-}
-
-/// A range of compass bearings, clockwise from `from_deg` to `to_deg` (degrees, 0 = north).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-pub struct BearingRange {
-    /// Start of the range, compass degrees.
-    pub from_deg: f64,
-    /// End of the range, compass degrees, reached clockwise from `from_deg`.
-    pub to_deg: f64,
 }
 
 impl Field {

@@ -2,10 +2,12 @@
 //! metres, repair rings, and refuse what cannot be planned with an error that says where.
 
 use super::geojson::{role_name, InputFeatures, InputPolygon, Role};
+use super::landmask::land_within;
 use super::projection::{Frame, TransverseMercator};
 use super::ring::{clean_ring, find_self_intersection, signed_area2, RingRepairs};
 use super::{BearingRange, Coordinates, Field, Obstacle, ProhibitedRegion};
 use crate::error::{ErrorCode, PlanError, Warning, WarningCode};
+use crate::geometry::forbids_every_direction;
 use geo::{
     Area, BooleanOps, BoundingRect, Contains, Coord, Intersects, LineString, MultiPolygon, Polygon,
 };
@@ -58,6 +60,7 @@ pub fn field_from_input(
     let frame = match coordinates {
         Coordinates::Wgs84 => {
             let (lon, lat) = centre_lon_lat(&boundary_in.rings[0]);
+            check_location(lon, lat, boundary_in.feature, &mut warnings)?;
             Frame::Wgs84(TransverseMercator::centred_at(lon, lat))
         }
         Coordinates::Metric => Frame::Metric,
@@ -191,6 +194,7 @@ pub fn field_from_input(
         obstacles,
         prohibited,
         name: boundary_in.name.clone(),
+        feature: boundary_in.feature,
         frame,
     };
     Ok((field, warnings))
@@ -298,6 +302,52 @@ fn check_coordinates(p: &InputPolygon, coordinates: Coordinates) -> Result<(), P
             }
         }
     }
+    Ok(())
+}
+
+/// A field far out at sea (no land within about 50 km) was not drawn there: when swapping its
+/// longitude and latitude puts it on land, the input is [latitude, longitude] and is refused;
+/// otherwise the plan goes ahead with a warning.
+fn check_location(
+    lon: f64,
+    lat: f64,
+    feature: usize,
+    warnings: &mut Vec<Warning>,
+) -> Result<(), PlanError> {
+    if land_within(lon, lat, 1) {
+        return Ok(());
+    }
+    let place = |lon: f64, lat: f64| {
+        format!(
+            "{:.4}° {}, {:.4}° {}",
+            lat.abs(),
+            if lat >= 0.0 { 'N' } else { 'S' },
+            lon.abs(),
+            if lon >= 0.0 { 'E' } else { 'W' }
+        )
+    };
+    if lon.abs() <= 90.0 && land_within(lat, lon, 1) {
+        return Err(PlanError::new(
+            ErrorCode::CoordinatesSwapped,
+            format!(
+                "the field lies in the sea at {}; with longitude and latitude swapped it would be on land at {}: GeoJSON positions are [longitude, latitude]",
+                place(lon, lat),
+                place(lat, lon)
+            ),
+        )
+        .at_feature(feature)
+        .at_coordinate([lon, lat]));
+    }
+    warnings.push(
+        Warning::new(
+            WarningCode::FieldAtSea,
+            format!(
+                "the field lies in the sea at {}, far from land: check its coordinates (GeoJSON positions are [longitude, latitude])",
+                place(lon, lat)
+            ),
+        )
+        .at_feature(feature),
+    );
     Ok(())
 }
 
@@ -552,23 +602,32 @@ fn outside_error(p: &InputPolygon, frame: &Frame, region: &Polygon, covers: bool
 }
 
 fn bearing_ranges(p: &InputPolygon) -> Result<Vec<BearingRange>, PlanError> {
-    p.forbidden_bearings_deg
+    let ranges: Vec<BearingRange> = p
+        .forbidden_bearings_deg
         .iter()
-        .map(|&[from_deg, to_deg]| {
-            if from_deg.is_finite() && to_deg.is_finite() {
-                Ok(BearingRange { from_deg, to_deg })
-            } else {
-                Err(PlanError::new(
-                    ErrorCode::InvalidGeojson,
-                    format!(
-                        "the forbidden bearings of prohibited region {} must be finite numbers",
-                        p.feature
-                    ),
-                )
-                .at_feature(p.feature))
-            }
-        })
-        .collect()
+        .map(|&pair| BearingRange::from(pair))
+        .collect();
+    if ranges.iter().any(|r| !r.is_finite()) {
+        return Err(PlanError::new(
+            ErrorCode::InvalidGeojson,
+            format!(
+                "the forbidden bearings of prohibited region {} must be finite numbers",
+                p.feature
+            ),
+        )
+        .at_feature(p.feature));
+    }
+    if forbids_every_direction(&ranges) {
+        return Err(PlanError::new(
+            ErrorCode::NoAllowedDirection,
+            format!(
+                "prohibited region {} forbids every driving direction; if nothing may be driven there, make it an obstacle",
+                p.feature
+            ),
+        )
+        .at_feature(p.feature));
+    }
+    Ok(ranges)
 }
 
 /// Merges obstacles that overlap or touch into one, keeping the first one's feature index.

@@ -2,7 +2,9 @@
 //! lines clipped by polygons (the core of swath generation).
 
 pub mod bearing;
+pub mod bearing_range;
 pub mod parallel_lines;
 
 pub use bearing::{bearing_of, deg_to_bearing, swath_direction, unit_vector};
+pub use bearing_range::{forbids_every_direction, BearingRange};
 pub use parallel_lines::SweepFrame;

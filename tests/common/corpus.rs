@@ -63,6 +63,7 @@ pub fn valid_fields() -> Vec<CorpusField> {
 pub fn invalid_fields() -> Vec<(PathBuf, &'static str)> {
     let expected = [
         ("hole-crossing-boundary", "hole_crossing_boundary"),
+        ("lat-lon-swapped", "coordinates_swapped"),
         ("latitude-out-of-range", "coordinate_out_of_range"),
         ("nan-coordinates", "invalid_json"),
         ("not-geojson", "invalid_json"),
