@@ -39,6 +39,23 @@ test("the package plans in Chromium", { timeout: 60_000 }, async () => {
         out.error = { isError: e instanceof Error, name: e.name, code: e.code, coordinate: e.coordinate };
       }
       out.version = furrow.version();
+      // A panic inside the planner: reported as an internal error, and the planner recovers.
+      const realError = console.error;
+      console.error = () => {};
+      try {
+        furrow.__panicForTests();
+      } catch (e) {
+        out.panic = { name: e.name, code: e.code };
+      } finally {
+        console.error = realError;
+      }
+      const f0 = fields[0];
+      const again = furrow.plan(await (await fetch(`/${f0.file}`)).json(), {
+        width: f0.width,
+        headlandPasses: f0.headlandPasses,
+        turnRadius: f0.turnRadius,
+      });
+      out.afterPanic = again.summary.swath_count;
       return out;
     });
     assert.ok(result.planned.length >= 20);
@@ -51,6 +68,8 @@ test("the package plans in Chromium", { timeout: 60_000 }, async () => {
     assert.equal(result.error.code, "self_intersection");
     assert.equal(result.error.coordinate.length, 2);
     assert.match(result.version, /^\d+\.\d+\.\d+/);
+    assert.deepEqual(result.panic, { name: "FurrowError", code: "internal" });
+    assert.equal(result.afterPanic, result.planned[0][2]);
     assert.deepEqual(problems, []);
     const slowest = result.times.sort((a, b) => b[1] - a[1]).slice(0, 3);
     console.log(`# slowest plans in Chromium (ms, one run after warm-up): ${JSON.stringify(slowest)}`);

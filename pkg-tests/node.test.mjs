@@ -9,7 +9,7 @@ if (!existsSync(new URL("furrow.js", pkgUrl))) {
   throw new Error("pkg/ is missing: run scripts/build.sh first");
 }
 const furrow = await import(new URL("furrow.js", pkgUrl));
-furrow.initSync({ module: readFileSync(new URL("furrow_bg.wasm", pkgUrl)) });
+furrow.initSync({ module: readFileSync(new URL("furrow_wasm_bg.wasm", pkgUrl)) });
 
 const readField = (name) => JSON.parse(readFileSync(new URL(name, fieldsUrl), "utf8"));
 
@@ -34,7 +34,11 @@ test("package.json describes the package", () => {
 });
 
 test("TypeScript definitions declare the API and its types", () => {
-  const dts = readFileSync(new URL("furrow.d.ts", pkgUrl), "utf8");
+  const entry = readFileSync(new URL("furrow.d.ts", pkgUrl), "utf8");
+  for (const name of ["plan", "defaultOptions", "version", "initSync", "default", "Plan", "PlanOptions", "FurrowError"]) {
+    assert.match(entry, new RegExp(`\\b${name}\\b`), `furrow.d.ts re-exports ${name}`);
+  }
+  const dts = readFileSync(new URL("furrow_wasm.d.ts", pkgUrl), "utf8");
   assert.match(dts, /export function plan\(field: FieldInput, options\?: PlanOptions\): Plan;/);
   for (const name of ["PlanOptions", "Plan", "PlanSummary", "PlanFeature", "FurrowError", "ErrorCode"]) {
     assert.match(dts, new RegExp(`export (interface|type) ${name}\\b`), name);
@@ -112,4 +116,25 @@ test("the instance keeps planning after errors", () => {
     assert.throws(() => furrow.plan("{"), { code: "invalid_json" });
   }
   assert.equal(furrow.plan(readField("square-1ha.geojson")).type, "FeatureCollection");
+});
+
+test("a panic inside the planner is reported and the planner recovers", () => {
+  const field = readField("square-1ha.geojson");
+  const before = furrow.plan(field);
+  // console_error_panic_hook prints the panic; keep the test output clean.
+  const error = console.error;
+  console.error = () => {};
+  try {
+    assert.throws(
+      () => furrow.__panicForTests(),
+      (e) => e.name === "FurrowError" && e.code === "internal" && e.cause instanceof WebAssembly.RuntimeError,
+    );
+  } finally {
+    console.error = error;
+  }
+  // A fresh instance plans the same field to the same plan.
+  const after = furrow.plan(field);
+  assert.equal(after.summary.swath_count, before.summary.swath_count);
+  assert.equal(after.features.length, before.features.length);
+  for (let i = 0; i < 20; i++) furrow.plan(field);
 });

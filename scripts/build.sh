@@ -8,7 +8,11 @@ scripts/setup.sh rust
 echo "[build] wasm (release)"
 cargo build --release --target wasm32-unknown-unknown --lib
 rm -rf pkg
-wasm-bindgen --target web --out-dir pkg target/wasm32-unknown-unknown/release/furrow.wasm
+# furrow_wasm.js is wasm-bindgen's module; furrow.js (js/) wraps it and recreates the instance
+# after a trap, with the reset function wasm-bindgen generates on request.
+wasm-bindgen --target web --out-name furrow_wasm --experimental-reset-state-function \
+  --out-dir pkg target/wasm32-unknown-unknown/release/furrow.wasm
+cp js/furrow.js js/furrow.d.ts pkg/
 # Debian's wasm-opt (binaryen 108) produces a module that fails to load: never run it here.
 
 version=$(awk -F'"' '/^version = / { print $2; exit }' Cargo.toml)
@@ -24,15 +28,15 @@ cat > pkg/package.json <<JSON
   "types": "furrow.d.ts",
   "exports": {
     ".": { "types": "./furrow.d.ts", "default": "./furrow.js" },
-    "./furrow_bg.wasm": "./furrow_bg.wasm"
+    "./furrow_wasm_bg.wasm": "./furrow_wasm_bg.wasm"
   },
-  "files": ["furrow.js", "furrow.d.ts", "furrow_bg.wasm", "furrow_bg.wasm.d.ts", "README.md"],
+  "files": ["furrow.js", "furrow.d.ts", "furrow_wasm.js", "furrow_wasm.d.ts", "furrow_wasm_bg.wasm", "furrow_wasm_bg.wasm.d.ts", "README.md"],
   "sideEffects": false,
   "keywords": ["agriculture", "coverage path planning", "geojson", "wasm", "tractor"]
 }
 JSON
 cp js/README.md pkg/README.md
-raw=$(wc -c < pkg/furrow_bg.wasm)
-gz=$(gzip -9 -c pkg/furrow_bg.wasm | wc -c)
-echo "[build] pkg/furrow_bg.wasm: $raw bytes, $gz gzipped"
+raw=$(wc -c < pkg/furrow_wasm_bg.wasm)
+gz=$(gzip -9 -c pkg/furrow_wasm_bg.wasm | wc -c)
+echo "[build] pkg/furrow_wasm_bg.wasm: $raw bytes, $gz gzipped"
 node scripts/site.mjs
