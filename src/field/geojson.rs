@@ -441,6 +441,15 @@ mod tests {
     }
 
     #[test]
+    fn text_over_the_size_limit_is_refused() {
+        let text = format!(
+            "{{\"type\":\"Polygon\",\"x\":\"{}\"}}",
+            " ".repeat(MAX_INPUT_BYTES)
+        );
+        assert_eq!(parse_str(&text).unwrap_err().code, ErrorCode::InputTooLarge);
+    }
+
+    #[test]
     fn a_line_as_boundary_is_unsupported() {
         let e = parse_str(
             r#"{"type":"Feature","properties":{"role":"boundary"},

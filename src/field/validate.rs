@@ -799,6 +799,28 @@ mod tests {
     }
 
     #[test]
+    fn too_many_vertices_are_refused() {
+        let n = MAX_VERTICES + 1;
+        let ring: Vec<String> = (0..n)
+            .map(|i| {
+                let t = i as f64 / n as f64 * std::f64::consts::TAU;
+                format!("[{},{}]", 24.0 + 0.01 * t.cos(), 60.0 + 0.005 * t.sin())
+            })
+            .collect();
+        let text = format!(
+            r#"{{"type":"Polygon","coordinates":[[{}]]}}"#,
+            ring.join(",")
+        );
+        assert_eq!(field(&text).unwrap_err().code, ErrorCode::InputTooLarge);
+    }
+
+    #[test]
+    fn a_field_more_than_40_km_across_is_refused() {
+        let text = r#"{"type":"Polygon","coordinates":[[[24,60],[25,60],[25,60.3],[24,60]]]}"#;
+        assert_eq!(field(text).unwrap_err().code, ErrorCode::FieldTooLarge);
+    }
+
+    #[test]
     fn antimeridian_centre() {
         let (lon, lat) = centre_lon_lat(&[[179.9, 1.0], [-179.9, 1.0], [-179.9, 2.0]]);
         assert!((lon.abs() - 180.0).abs() < 1e-9, "{lon}");
