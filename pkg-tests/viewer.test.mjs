@@ -1,6 +1,8 @@
 // Smoke test of the viewer (www/) in headless Chromium: it loads the package, plans the default
 // field, draws it, re-plans on input, switches fields, survives planner errors, pans and zooms,
-// and lays out on a phone. Screenshots go to target/screenshots/.
+// and lays out on a phone; it opens field files (the corpus's invalid inputs among them) and shows
+// the planner's errors and warnings in words beside the feature they concern. Screenshots go to
+// target/screenshots/.
 //
 //   bash scripts/build.sh            (once: the wasm package and target/site)
 //   node scripts/site.mjs            (after editing www/ only)
@@ -10,12 +12,14 @@
 // another binary.
 import { test } from "node:test";
 import assert from "node:assert/strict";
-import { existsSync, mkdirSync } from "node:fs";
+import { existsSync, mkdirSync, readdirSync, readFileSync } from "node:fs";
 import { join } from "node:path";
 import { startServer } from "../scripts/serve.mjs";
 import { launchChromium, ROOT, SITE } from "./support.mjs";
 
 const SHOTS = join(ROOT, "target/screenshots");
+const FIELDS = join(ROOT, "tests/fields");
+const INVALID = join(FIELDS, "invalid");
 const TIMEOUT = 60_000;
 
 /** Starts the server and the browser, runs `body(page, base)`, and always closes both. */
@@ -187,6 +191,7 @@ test("viewer: phone layout with touch, pinch zoom", { timeout: TIMEOUT }, async 
       const rect = (sel) => document.querySelector(sel).getBoundingClientRect().toJSON();
       const canvas = document.getElementById("map");
       const small = [...document.querySelectorAll("button, select, input")]
+        .filter((el) => el.checkVisibility())
         .map((el) => [el.id || el.tagName, el.getBoundingClientRect()])
         .filter(([, r]) => r.height < 44 || r.width < 44)
         .map(([id, r]) => `${id} ${r.width}x${r.height}`);
@@ -233,5 +238,263 @@ test("viewer: phone layout with touch, pinch zoom", { timeout: TIMEOUT }, async 
 
     await page.locator("#fit").tap();
     await page.screenshot({ path: join(SHOTS, "viewer-phone.png"), fullPage: true });
+
+    // An error's callout stays inside the map on a phone, its words wrapped, no sideways scrolling.
+    const bowtie = readFileSync(join(INVALID, "self-intersecting-bowtie.geojson"), "utf8");
+    await page.evaluate((t) => window.furrow.loadField(t, "bowtie"), bowtie);
+    await page.waitForSelector("body[data-plan-state=error]");
+    const map = await page.locator(".map").boundingBox();
+    const callout = await page.locator("#map-message").boundingBox();
+    assert.ok(inside(callout, map), `callout ${JSON.stringify(callout)} inside the map ${JSON.stringify(map)}`);
+    assert.equal(await page.evaluate(() => document.documentElement.scrollWidth), 390, "no sideways scrolling");
+    const toggle = page.locator("#map-message .callout-toggle");
+    assert.ok((await toggle.boundingBox()).height >= 44, "the Hide button is a touch target");
+    await toggle.tap();
+    assert.ok(await page.isHidden("#map-message .callout-text"), "Hide folds the callout");
+    await toggle.tap();
+    assert.ok(await page.isVisible("#map-message .callout-text"), "Show unfolds it");
+    await page.screenshot({ path: join(SHOTS, "viewer-phone-error.png"), fullPage: true });
+
+    // A warning's words are a tap away, and a second tap puts them away.
+    const defective = rectangleWith({ open: true, clockwise: true });
+    await page.evaluate((t) => window.furrow.loadField(t, "rectangle, open and clockwise"), defective);
+    await ready(page);
+    const note = page.locator('.map-note[data-feature="0"]');
+    assert.equal(await note.count(), 1);
+    assert.ok(await note.locator(".callout").isHidden(), "closed until tapped");
+    await note.locator(".note-badge").tap();
+    assert.ok(await note.locator(".callout").isVisible(), "a tap opens the warning");
+    assert.match(await note.locator(".callout").innerText(), /not closed/);
+    assert.ok(inside(await note.locator(".callout").boundingBox(), map), "the warning card inside the map");
+    await page.screenshot({ path: join(SHOTS, "viewer-phone-warning.png"), fullPage: true });
+    await note.locator(".note-badge").tap();
+    assert.ok(await note.locator(".callout").isHidden(), "a second tap closes it");
+  });
+});
+
+/** The rectangle corpus field with its boundary ring left open and/or running clockwise. */
+function rectangleWith({ open = false, clockwise = false }) {
+  const field = JSON.parse(readFileSync(join(FIELDS, "rectangle.geojson"), "utf8"));
+  const ring = field.features[0].geometry.coordinates[0];
+  if (clockwise) ring.reverse();
+  if (open) ring.pop();
+  return JSON.stringify(field);
+}
+
+/** Whether box a lies inside box b (1 px of slack). */
+const inside = (a, b) =>
+  a &&
+  b &&
+  a.x >= b.x - 1 &&
+  a.y >= b.y - 1 &&
+  a.x + a.width <= b.x + b.width + 1 &&
+  a.y + a.height <= b.y + b.height + 1;
+
+/** Distance from point [x, y] to box (0 inside). */
+const distanceToBox = ([x, y], b) =>
+  Math.hypot(Math.max(b.x - x, 0, x - (b.x + b.width)), Math.max(b.y - y, 0, y - (b.y + b.height)));
+
+/** Page position of a lon/lat position with the view's projection. */
+const onScreen = (page, coordinate) =>
+  page.evaluate((c) => {
+    const [x, y] = window.furrow.view.toScreen(window.furrow.projection.forward(c));
+    const r = document.getElementById("map").getBoundingClientRect();
+    return [r.left + x, r.top + y];
+  }, coordinate);
+
+/** Distance on screen from a page point to the outline of input feature `index` (exterior ring). */
+const distanceToFeature = (page, point, index) =>
+  page.evaluate(
+    ([[px, py], index]) => {
+      const f = window.furrow.field;
+      const geometry = f.type === "FeatureCollection" ? f.features[index].geometry : (f.geometry ?? f);
+      const r = document.getElementById("map").getBoundingClientRect();
+      const ring = geometry.coordinates[0].map((c) => {
+        const [x, y] = window.furrow.view.toScreen(window.furrow.projection.forward(c));
+        return [r.left + x, r.top + y];
+      });
+      let best = Infinity;
+      for (let i = 0; i < ring.length; i++) {
+        const [ax, ay] = ring[i];
+        const [bx, by] = ring[(i + 1) % ring.length];
+        const len2 = (bx - ax) ** 2 + (by - ay) ** 2 || 1;
+        const t = Math.max(0, Math.min(1, ((px - ax) * (bx - ax) + (py - ay) * (by - ay)) / len2));
+        best = Math.min(best, Math.hypot(px - (ax + t * (bx - ax)), py - (ay + t * (by - ay))));
+      }
+      return best;
+    },
+    [point, index],
+  );
+
+test("viewer: opens field files; errors and warnings in words beside the feature", { timeout: TIMEOUT }, async () => {
+  mkdirSync(SHOTS, { recursive: true });
+  await withViewer({ viewport: { width: 1280, height: 800 }, deviceScaleFactor: 1 }, async (page, base) => {
+    await page.goto(base);
+    await ready(page);
+    const map = await page.locator(".map").boundingBox();
+    const callout = page.locator("#map-message");
+
+    // Every invalid input of the corpus, given to the page as the text of its file.
+    const expected = {
+      "hole-crossing-boundary.geojson": "hole_crossing_boundary",
+      "lat-lon-swapped.geojson": "coordinates_swapped",
+      "latitude-out-of-range.geojson": "coordinate_out_of_range",
+      "nan-coordinates.geojson": "invalid_json",
+      "not-geojson.geojson": "invalid_json",
+      "obstacle-outside-field.geojson": "obstacle_outside_field",
+      "self-intersecting-bowtie.geojson": "self_intersection",
+      "too-few-points.geojson": "too_few_points",
+      "zero-area.geojson": "zero_area",
+    };
+    const files = readdirSync(INVALID).filter((f) => f.endsWith(".geojson"));
+    assert.deepEqual(files.sort(), Object.keys(expected).sort(), "tests/fields/invalid/ changed: update the test");
+    for (const file of files) {
+      const text = readFileSync(join(INVALID, file), "utf8");
+      const name = file.replace(/\.geojson$/, "");
+      const { error, warnings } = await page.evaluate(
+        ([t, n]) => window.furrow.loadField(t, n).then((r) => ({ error: r.error, warnings: r.plan?.warnings })),
+        [text, name],
+      );
+      assert.ok(error, `${file}: planned, with warnings ${JSON.stringify(warnings)}`);
+      assert.equal(error.code, expected[file], `${file}: ${JSON.stringify(error)}`);
+      await page.waitForSelector("body[data-plan-state=error]");
+      assert.ok(await callout.isVisible(), `${file}: the callout is shown`);
+      assert.equal(await callout.getAttribute("data-code"), error.code, `${file}: data-code`);
+      const words = await callout.locator(".callout-text").innerText();
+      assert.ok((words.match(/\b[a-z]{2,}\b/gi) ?? []).length >= 5, `${file}: a message in words: ${words}`);
+      assert.ok(!words.includes(error.code), `${file}: words, not the code`);
+      assert.equal(
+        await callout.getAttribute("data-feature"),
+        Number.isInteger(error.feature) ? String(error.feature) : null,
+        `${file}: data-feature`,
+      );
+      const box = await callout.boundingBox();
+      assert.ok(inside(box, map), `${file}: the callout ${JSON.stringify(box)} overflows the map`);
+      assert.match(await page.textContent("#warnings li.error"), /Cannot plan/, `${file}: listed in the panel`);
+      const located = Number.isInteger(error.feature) || error.coordinate;
+      assert.equal(await callout.evaluate((e) => e.classList.contains("anchored")), !!located, `${file}: placement`);
+      if (error.coordinate) {
+        // Beside the point it names, which is marked on the map.
+        const at = await onScreen(page, error.coordinate);
+        const d = distanceToBox(at, box);
+        assert.ok(d <= 80, `${file}: the callout is ${d.toFixed(0)} px from ${at}`);
+        assert.ok(inside({ x: at[0], y: at[1], width: 0, height: 0 }, map), `${file}: the place is on the map`);
+        assert.ok((await countColour(page, "--error-mark")) > 60, `${file}: the place marked in red`);
+      } else if (Number.isInteger(error.feature)) {
+        // Beside the feature, whose outline is red.
+        assert.ok((await countColour(page, "--error-mark")) > 60, `${file}: the feature outlined in red`);
+        const d = await distanceToFeature(page, [box.x + box.width / 2, box.y + box.height / 2], error.feature);
+        assert.ok(d <= box.height / 2 + box.width / 2 + 40, `${file}: the callout ${d.toFixed(0)} px from the feature`);
+      }
+
+      if (file === "self-intersecting-bowtie.geojson") {
+        await page.screenshot({ path: join(SHOTS, "viewer-error.png") });
+        // The callout follows the map when it is panned.
+        const cx = map.x + map.width / 2;
+        const cy = map.y + map.height - 40;
+        await page.mouse.move(cx, cy);
+        await page.mouse.down();
+        await page.mouse.move(cx - 90, cy - 30, { steps: 4 });
+        await page.mouse.up();
+        await page.waitForFunction(() => !window.furrow.view.frame);
+        const moved = await callout.boundingBox();
+        const at = await onScreen(page, error.coordinate);
+        assert.ok(distanceToBox(at, moved) <= 80, "the callout stays beside the crossing after a pan");
+        assert.ok(Math.abs(moved.x - box.x) > 20 || Math.abs(moved.y - box.y) > 20, "the callout moved with the map");
+        // Hide folds it to its title, Show unfolds it.
+        await callout.locator(".callout-toggle").click();
+        assert.ok(await callout.locator(".callout-text").isHidden());
+        assert.equal(await callout.locator(".callout-toggle").getAttribute("aria-expanded"), "false");
+        await callout.locator(".callout-toggle").click();
+        assert.ok(await callout.locator(".callout-text").isVisible());
+      }
+      if (file === "obstacle-outside-field.geojson") assert.equal(await callout.getAttribute("data-feature"), "1");
+      if (error.code === "invalid_json") {
+        assert.ok(await callout.evaluate((e) => e.classList.contains("banner")), `${file}: a banner`);
+      }
+    }
+
+    // The file picker: a rectangle whose boundary is left open and runs clockwise plans with two
+    // warnings on feature 0, grouped under one small badge on its outline.
+    const [chooser] = await Promise.all([page.waitForEvent("filechooser"), page.click("#open-file")]);
+    assert.equal(await page.getAttribute("#file-input", "accept"), ".geojson,.json,application/geo+json");
+    await chooser.setFiles({
+      name: "rectangle-open-clockwise.geojson",
+      mimeType: "application/geo+json",
+      buffer: Buffer.from(rectangleWith({ open: true, clockwise: true })),
+    });
+    await ready(page);
+    assert.ok(await callout.isHidden(), "no error callout");
+    assert.match(await page.textContent("#status"), /rectangle-open-clockwise/);
+    const codes = await page.evaluate(() => window.furrow.plan.warnings.map((w) => `${w.code}@${w.feature}`));
+    assert.deepEqual(codes.sort(), ["ring_closed@0", "ring_reoriented@0"]);
+    const note = page.locator(".map-note");
+    assert.equal(await note.count(), 1, "one badge for the two warnings of one feature");
+    assert.equal(await note.getAttribute("data-feature"), "0");
+    assert.deepEqual((await note.getAttribute("data-code")).split(" ").sort(), ["ring_closed", "ring_reoriented"]);
+    const pip = await note.locator(".pip").boundingBox();
+    assert.ok(pip.width <= 40 && pip.height <= 30, `the badge is small: ${JSON.stringify(pip)}`);
+    assert.match(await note.locator(".pip").innerText(), /2/, "the badge counts its warnings");
+    const centre = [pip.x + pip.width / 2, pip.y + pip.height / 2];
+    const off = await distanceToFeature(page, centre, 0);
+    assert.ok(off <= 6, `the badge sits on the boundary's outline (${off.toFixed(1)} px off)`);
+    assert.ok((await countColour(page, "--swath")) > 100, "the plan is drawn under the badge");
+    const card = note.locator(".callout");
+    assert.ok(await card.isHidden(), "the words wait for hover, focus or a tap");
+    const label = await note.locator(".note-badge").getAttribute("aria-label");
+    assert.match(label, /not closed/, "the badge's accessible name has the words");
+    // Hover shows the words and outlines the feature; leaving hides them.
+    const warnBefore = await countColour(page, "--warn-mark");
+    await note.locator(".note-badge").hover();
+    assert.ok(await card.isVisible(), "hover opens the warning");
+    assert.ok((await countColour(page, "--warn-mark")) > warnBefore + 200, "the feature is outlined while open");
+    await page.mouse.move(map.x + 20, map.y + map.height - 80);
+    await card.waitFor({ state: "hidden", timeout: 2000 }); // leaving closes it
+    // A click (a tap) keeps it open, with both messages in words.
+    await note.locator(".note-badge").click();
+    assert.ok(await card.isVisible(), "a click opens the warning");
+    assert.equal(await note.locator(".note-badge").getAttribute("aria-expanded"), "true");
+    const items = await card.locator("li").evaluateAll((lis) => lis.map((li) => [li.dataset.code, li.textContent]));
+    assert.equal(items.length, 2);
+    for (const [code, words] of items) {
+      assert.match(words, /^The boundary .+ (closed|turned round)\.$/, `${code}: ${words}`);
+    }
+    assert.ok(inside(await card.boundingBox(), map), "the warning card inside the map");
+    assert.equal(await page.locator("#warnings li[data-code=ring_closed]").count(), 1, "listed in the panel too");
+    await page.mouse.move(map.x + 20, map.y + map.height - 80);
+    assert.ok(await card.isVisible(), "stays open after the pointer leaves");
+    await page.screenshot({ path: join(SHOTS, "viewer-warning.png") });
+    await page.keyboard.press("Escape");
+    assert.ok(await card.isHidden(), "Escape closes it");
+
+    // Dropping a file on the map opens it too (here a file that is not JSON at all).
+    await page.evaluate((text) => {
+      const dt = new DataTransfer();
+      dt.items.add(new File([text], "broken.geojson", { type: "application/geo+json" }));
+      const target = document.querySelector(".map");
+      for (const type of ["dragenter", "dragover", "drop"]) {
+        target.dispatchEvent(new DragEvent(type, { dataTransfer: dt, bubbles: true, cancelable: true }));
+      }
+    }, readFileSync(join(INVALID, "not-geojson.geojson"), "utf8"));
+    await page.waitForSelector("body[data-plan-state=error]");
+    assert.equal(await callout.getAttribute("data-code"), "invalid_json");
+    assert.equal(await note.count(), 0, "no warning badges without a plan");
+
+    // A good field: the callouts go, the plan is drawn.
+    const good = readFileSync(join(FIELDS, "rectangle.geojson"), "utf8");
+    await page.evaluate((t) => window.furrow.loadField(t, "rectangle"), good);
+    await ready(page);
+    assert.ok(await callout.isHidden(), "the error callout is gone");
+    assert.equal(await page.locator("[data-code]:visible").count(), 0, "no callouts or badges left");
+    assert.equal(await page.locator("#warnings li").count(), 0);
+    assert.ok((await countColour(page, "--swath")) > 100, "swaths drawn");
+    assert.ok((await countColour(page, "--headland")) > 100, "headland drawn");
+    assert.ok((await countColour(page, "--error-mark")) < 10, "nothing drawn in the error colour");
+
+    // And the bundled fields are still a pick away.
+    await page.selectOption("#field", "square-1ha");
+    await page.waitForFunction(() => window.furrow.field?.features?.[0]?.properties?.name === "square-1ha");
+    await ready(page);
+    assert.ok(await page.isEnabled("#suggested"));
   });
 });

@@ -1,18 +1,36 @@
-// furrow viewer shell: pick a bundled field, set the machine, see the plan. Every input change
-// re-plans at once (the planner takes a few milliseconds).
+// furrow viewer shell: pick a bundled field or open a GeoJSON file, set the machine, see the
+// plan. Every input change re-plans at once (the planner takes a few milliseconds). What the
+// planner says (an error, or warnings) is shown in words on the map beside the feature it
+// concerns (notes.js), and listed in the panel.
 //
 // State for tests and debugging: body[data-plan-state] = loading | ready | error, and after each
-// plan body[data-swath-count] and body[data-plan-ms]; window.furrow holds the last plan.
+// plan body[data-swath-count] and body[data-plan-ms]; window.furrow holds the last plan or error,
+// and window.furrow.loadField(geojsonTextOrObject, name) plans a field given by the page.
+import { ERROR_HINTS, MapNotes, featureLabel, sentence } from "./notes.js";
 import { initPlanner, runPlan } from "./planner.js";
-import { fieldParts, fieldScene, planScene, projectionFor } from "./scene.js";
+import {
+  fieldParts,
+  fieldScene,
+  inputFeatures,
+  outlineAnchor,
+  parseForDrawing,
+  pathBounds,
+  planScene,
+  projectFeature,
+  projectionFor,
+} from "./scene.js";
 import { PlanView } from "./view.js";
 
 const DEFAULT_FIELD = "obstacle-types";
 const OPTION_INPUTS = ["width", "headlandPasses", "turnRadius", "bearing"];
+const OPENED = ":opened"; // value of the field picker's entry for an opened file
+const MAX_FILE_BYTES = 64 * 1024 * 1024; // the planner refuses more than 32 MB anyway
 
 const $ = (id) => document.getElementById(id);
 const ui = {
   field: $("field"),
+  open: $("open-file"),
+  file: $("file-input"),
   note: $("field-note"),
   inputs: Object.fromEntries(OPTION_INPUTS.map((id) => [id, $(id)])),
   suggested: $("suggested"),
@@ -24,15 +42,29 @@ const ui = {
 };
 
 const view = new PlanView($("map"));
+const notes = new MapNotes({
+  map: document.querySelector(".map"),
+  layer: $("map-notes"),
+  error: ui.message,
+  tools: document.querySelector(".map-tools"),
+  view,
+});
+view.onDraw = () => notes.layout();
+notes.onOpenChange = () => updateHighlights();
 const fieldCache = new Map(); // file -> Promise of the field GeoJSON
 
 const state = {
   fields: [], // fields/index.json
-  entry: null, // the chosen entry of fields/index.json
-  field: null, // its GeoJSON
+  entry: null, // the chosen entry of fields/index.json, or { name, opened: true } for an opened file
+  source: null, // what the planner is given: the field's GeoJSON object, or an opened file's text
+  field: null, // the field's GeoJSON object as far as it could be read for drawing (or undefined)
+  opened: null, // the last opened file: { source, name }
   projection: null,
+  features: [], // the input's features (inputFeatures) in the view's metres
+  fitPending: false, // fit the view after the next plan (a new field), to its error's place too
   plan: null, // the last good plan
   error: null, // the last error, as { code, message, ... }
+  errorHighlight: [], // the outline the error concerns, for the view
   loadToken: 0,
 };
 
@@ -44,7 +76,10 @@ window.furrow = {
     return state.error;
   },
   get field() {
-    return state.field;
+    return state.field ?? state.source;
+  },
+  get projection() {
+    return state.projection;
   },
   get options() {
     return readOptions().options;
@@ -52,6 +87,7 @@ window.furrow = {
   view,
   replan,
   selectField,
+  loadField,
 };
 
 setPlanState("loading");
@@ -73,6 +109,11 @@ async function start() {
       }),
     );
     ui.field.disabled = false;
+    if (state.opened) openedOption(state.opened.name); // a file was opened meanwhile
+    if (state.entry?.opened) {
+      ui.field.value = OPENED;
+      return;
+    }
     const wanted = decodeURIComponent(location.hash.slice(1));
     const first = fields.find((f) => f.name === wanted) ?? fields.find((f) => f.name === DEFAULT_FIELD) ?? fields[0];
     await selectField(first.name);
@@ -84,10 +125,21 @@ async function start() {
 }
 
 function bindControls() {
-  ui.field.addEventListener("change", () => selectField(ui.field.value));
+  ui.field.addEventListener("change", () => {
+    if (ui.field.value === OPENED) {
+      if (state.opened && !state.entry?.opened) loadField(state.opened.source, state.opened.name);
+    } else selectField(ui.field.value);
+  });
+  ui.open.addEventListener("click", () => ui.file.click());
+  ui.file.addEventListener("change", () => {
+    const file = ui.file.files?.[0];
+    ui.file.value = ""; // so that opening the same file again (after fixing it) reloads it
+    if (file) openFile(file);
+  });
+  bindDrop(document.querySelector(".map"));
   for (const input of Object.values(ui.inputs)) input.addEventListener("input", replan);
   ui.suggested.addEventListener("click", () => {
-    if (!state.entry) return;
+    if (!state.entry || state.entry.opened) return;
     applySuggested(state.entry);
     replan();
   });
@@ -98,6 +150,119 @@ function bindControls() {
     const name = decodeURIComponent(location.hash.slice(1));
     if (name && name !== state.entry?.name && state.fields.some((f) => f.name === name)) selectField(name);
   });
+}
+
+/** Opening a file by dropping it on the map. Files dropped elsewhere are ignored, not opened by
+ * the browser in place of the viewer. */
+function bindDrop(map) {
+  const hasFiles = (e) => [...(e.dataTransfer?.types ?? [])].includes("Files");
+  for (const type of ["dragenter", "dragover"]) {
+    map.addEventListener(type, (e) => {
+      if (!hasFiles(e)) return;
+      e.preventDefault();
+      e.dataTransfer.dropEffect = "copy";
+      map.classList.add("drop-target");
+    });
+  }
+  map.addEventListener("dragleave", (e) => {
+    if (!map.contains(e.relatedTarget)) map.classList.remove("drop-target");
+  });
+  map.addEventListener("drop", (e) => {
+    map.classList.remove("drop-target");
+    if (!hasFiles(e)) return;
+    e.preventDefault();
+    const file = e.dataTransfer.files?.[0];
+    if (file) openFile(file);
+  });
+  for (const type of ["dragover", "drop"]) {
+    window.addEventListener(type, (e) => {
+      if (!hasFiles(e) || map.contains(e.target)) return;
+      e.preventDefault();
+      e.dataTransfer.dropEffect = "none";
+    });
+  }
+}
+
+/** Reads a file and plans it as it is. */
+async function openFile(file) {
+  const name = file.name.replace(/\.(geo)?json$/i, "") || file.name;
+  if (file.size > MAX_FILE_BYTES) {
+    const mb = Math.round(file.size / 1e6);
+    showFailure(`${file.name} is ${mb} MB: too large for a field (at most 32 MB).`, "file_too_large");
+    return;
+  }
+  let text;
+  try {
+    text = await file.text();
+  } catch (e) {
+    showFailure(`${file.name} could not be read: ${e.message ?? e}`, "file_unreadable");
+    return;
+  }
+  await loadField(text, name);
+}
+
+/**
+ * Shows and plans a field given as GeoJSON text or object, with the current settings. The text
+ * goes to the planner as it is, so a broken file gets the planner's own error; for drawing, as
+ * much of it as can be read is drawn. Resolves to `{ plan, error }`.
+ */
+async function loadField(input, name = "Opened field") {
+  const token = ++state.loadToken;
+  setPlanState("loading");
+  try {
+    await initPlanner();
+  } catch (e) {
+    if (token === state.loadToken) showFailure(`The planner could not be loaded: ${e.message ?? e}`);
+    return { plan: null, error: state.error };
+  }
+  if (token !== state.loadToken) return { plan: null, error: null };
+  name = String(name || "Opened field");
+  state.opened = { source: input, name };
+  state.entry = { name, opened: true };
+  state.source = input;
+  state.field = typeof input === "string" ? parseForDrawing(input) : input;
+  openedOption(name);
+  ui.field.value = OPENED;
+  ui.field.disabled = false;
+  ui.suggested.disabled = true;
+  ui.note.textContent = "Opened from a file; planned with the settings below.";
+  if (location.hash) history.replaceState(null, "", location.pathname + location.search);
+  showField(state.field);
+  return replan();
+}
+
+/** The field picker's entry for the opened file, first in the list. */
+function openedOption(name) {
+  let option = ui.field.querySelector(`option[value="${OPENED}"]`);
+  if (!option) {
+    option = document.createElement("option");
+    option.value = OPENED;
+    ui.field.prepend(option);
+  }
+  option.textContent = `${name} (opened file)`;
+}
+
+/** Draws a field (whatever of it can be drawn) without a plan; the next plan fits the view. */
+function showField(geojson) {
+  notes.hideError();
+  notes.clearWarnings();
+  state.errorHighlight = [];
+  let scene;
+  try {
+    const parts = fieldParts(geojson);
+    const features = inputFeatures(geojson);
+    state.projection = projectionFor(parts, features);
+    state.features = features.map((f) => projectFeature(f, state.projection));
+    scene = fieldScene(parts, state.projection);
+  } catch (e) {
+    // Drawing never stops the planner from saying what is wrong with the field.
+    console.warn("furrow viewer: the field could not be drawn", e);
+    state.projection = projectionFor({ boundary: null, obstacles: [], prohibited: [] });
+    state.features = [];
+    scene = { boundary: null, obstacles: [], prohibited: [], bounds: null };
+  }
+  view.setField(scene, { fit: false });
+  state.fitPending = true;
 }
 
 /** Loads a field of the index by name, applies its suggested machine settings, fits and plans. */
@@ -118,14 +283,14 @@ async function selectField(name) {
   if (token !== state.loadToken) return; // another field was picked meanwhile
   state.entry = entry;
   state.field = field;
+  state.source = field;
+  ui.suggested.disabled = false;
   ui.note.textContent = entry.note ?? "";
   if (location.hash.slice(1) !== encodeURIComponent(entry.name)) {
     history.replaceState(null, "", `#${encodeURIComponent(entry.name)}`);
   }
   applySuggested(entry);
-  const parts = fieldParts(field);
-  state.projection = projectionFor(parts);
-  view.setField(fieldScene(parts, state.projection), { fit: true });
+  showField(field);
   replan();
 }
 
@@ -184,64 +349,154 @@ function readOptions() {
   return { options, problems };
 }
 
-/** Plans the current field with the current inputs and shows the result. */
+/**
+ * Plans the current field with the current inputs and shows the result; returns
+ * `{ plan, error }`.
+ */
 function replan() {
-  if (!state.field) return;
+  if (state.source == null) return { plan: null, error: null };
+  const fit = state.fitPending;
+  state.fitPending = false;
   const { options, problems } = readOptions();
   markInvalid(problems.map((p) => p.id));
   if (problems.length) {
     showPlanError({ code: "invalid_option", message: problems.map((p) => p.message).join(" ") }, { local: true });
-    return;
+  } else {
+    const result = runPlan(state.source, options);
+    if (result.error) showPlanError(result.error);
+    else showPlan(result.plan, options, result.ms);
   }
-  const result = runPlan(state.field, options);
-  if (result.error) {
-    showPlanError(result.error);
-    return;
-  }
-  showPlan(result.plan, options, result.ms);
+  if (fit) view.fit();
+  return { plan: state.plan, error: state.error };
 }
 
 function showPlan(plan, options, callMs) {
   state.plan = plan;
   state.error = null;
+  state.errorHighlight = [];
+  view.extraBounds = null;
+  notes.hideError();
   view.setPlan(planScene(plan, state.projection), { machineWidth: options.width });
-  ui.message.hidden = true;
-  ui.message.textContent = "";
   const s = plan.summary ?? {};
   ui.status.textContent = `Plan of ${state.entry.name}`;
   renderSummary(s, options, callMs);
-  renderWarnings(plan.warnings ?? []);
+  const warnings = plan.warnings ?? [];
+  renderWarnings(warnings);
+  showWarningNotes(warnings);
+  updateHighlights();
   document.body.dataset.swathCount = String(s.swath_count ?? 0);
   document.body.dataset.planMs = String(s.planning_ms ?? callMs);
   setPlanState("ready");
+}
+
+/** A badge on the outline of each feature that warnings name; several on one feature share it. */
+function showWarningNotes(warnings) {
+  const byFeature = new Map();
+  for (const w of warnings) {
+    if (!Number.isInteger(w.feature)) continue;
+    if (!byFeature.has(w.feature)) byFeature.set(w.feature, []);
+    byFeature.get(w.feature).push(w);
+  }
+  const groups = [];
+  for (const [feature, list] of byFeature) {
+    const f = state.features[feature];
+    const anchor = f ? outlineAnchor(f.paths) : null;
+    if (!anchor) continue; // nothing to pin it to: the panel lists it
+    groups.push({ feature, label: featureLabel(f, feature), anchor, warnings: list });
+  }
+  notes.showWarnings(groups);
+}
+
+/** The outlines the view highlights: the error's feature, and the features of open warnings. */
+function updateHighlights() {
+  const open = notes.groups.filter((g) => notes.isOpen(g));
+  view.setHighlights([
+    ...state.errorHighlight,
+    ...open.map((g) => ({ paths: state.features[g.feature]?.paths ?? [], kind: "warning" })),
+  ]);
+}
+
+/**
+ * Where an error is, in the view's metres: `{ anchor, marker, paths }`: the point the callout
+ * points at (the error's coordinate, else the vertex it names, else a point on the outline of its
+ * feature or ring), the point to mark (the coordinate), and the outline to highlight.
+ */
+function errorPlace(error) {
+  const forward = state.projection?.forward;
+  const c = error.coordinate;
+  const marker = forward && Array.isArray(c) && Number.isFinite(c[0]) && Number.isFinite(c[1]) ? forward(c) : null;
+  let paths = Number.isInteger(error.feature) ? (state.features[error.feature]?.paths ?? []) : [];
+  if (Number.isInteger(error.ring)) {
+    const ring = paths.filter((p) => p.ring === error.ring);
+    if (ring.length) paths = [ring[0]];
+  }
+  let anchor = marker;
+  if (!anchor && Number.isInteger(error.vertex) && paths.length === 1) {
+    // The vertex itself, or (when it is not a number) the nearest one that is.
+    const pts = paths[0].points;
+    for (let d = 0; d < pts.length && !anchor; d++) anchor = pts[error.vertex - d] ?? pts[error.vertex + d] ?? null;
+  }
+  anchor ??= outlineAnchor(paths);
+  return { anchor, marker, paths: paths.some((p) => p.points.some(Boolean)) ? paths : [] };
 }
 
 /** Shows why there is no plan; the field stays drawn and the inputs stay usable. */
 function showPlanError(error, { local = false } = {}) {
   state.error = error;
   state.plan = null;
-  const marker = error.coordinate && state.projection ? state.projection.forward(error.coordinate) : null;
-  view.setPlan(null, { marker });
+  const place = local ? { anchor: null, marker: null, paths: [] } : errorPlace(error);
+  state.errorHighlight = place.paths.length ? [{ paths: place.paths, kind: "error" }] : [];
+  view.extraBounds = place.anchor ? pathBounds(place.paths, [place.anchor, place.marker]) : null;
+  notes.clearWarnings({ notify: false });
+  view.setPlan(null, { marker: place.marker });
+  updateHighlights();
   if (!local) markInvalid(inputsNamedIn(error));
-  const text = local ? error.message : `Cannot plan this field: ${sentence(error.message)}`;
-  ui.message.textContent = text;
-  ui.message.hidden = false;
+  const title = local ? "Check the settings" : "Cannot plan this field";
+  const text = sentence(error.message);
+  const where = [];
+  if (Number.isInteger(error.feature)) where.push(`feature ${error.feature}`);
+  if (Number.isInteger(error.ring)) where.push(`ring ${error.ring}`);
+  if (Number.isInteger(error.vertex)) where.push(`vertex ${error.vertex}`);
+  notes.showError({
+    code: error.code,
+    feature: error.feature,
+    title,
+    text,
+    hint: local ? null : ERROR_HINTS[error.code],
+    excerpt: local ? null : jsonExcerpt(state.source, error.message),
+    detail: local ? null : `Error code ${error.code}${where.length ? `, ${where.join(", ")}` : ""}`,
+    anchor: place.anchor,
+  });
   ui.status.textContent = "No plan";
   ui.summary.replaceChildren();
-  const where = [];
-  if (Number.isInteger(error.feature)) where.push(`input feature ${error.feature}`);
-  if (error.coordinate) where.push(`near ${error.coordinate.map((v) => v.toFixed(6)).join(", ")}`);
-  renderWarnings([], where.length ? `${text} (${where.join(", ")})` : text);
+  const at = error.coordinate ? ` (near ${error.coordinate.map((v) => v.toFixed(6)).join(", ")})` : "";
+  renderWarnings([], { text: `${title}: ${text}${at}`, code: error.code, feature: error.feature });
   delete document.body.dataset.swathCount;
   delete document.body.dataset.planMs;
   setPlanState("error");
 }
 
-/** A failure outside planning (loading the package or a field). */
-function showFailure(text) {
-  state.error = { code: "load_failed", message: text };
-  ui.message.textContent = text;
-  ui.message.hidden = false;
+/** The text around the line and column an invalid_json message names, to find it in the file. */
+function jsonExcerpt(source, message) {
+  const m = /line (\d+) column (\d+)/.exec(String(message));
+  if (typeof source !== "string" || !m) return null;
+  const lines = source.split("\n");
+  const line = lines[Number(m[1]) - 1];
+  if (line == null) return null;
+  const col = Math.max(0, Math.min(line.length, Number(m[2]) - 1));
+  const cut = (t) => t.replace(/\s+/g, " ");
+  return {
+    before: (col > 24 ? "…" : "") + cut(line.slice(Math.max(0, col - 24), col)),
+    at: cut(line.slice(col, col + 1)),
+    after: cut(line.slice(col + 1, col + 16)) + (col + 16 < line.length ? "…" : ""),
+  };
+}
+
+/** A failure outside planning (loading the package, a field or a file). */
+function showFailure(text, code = "load_failed") {
+  state.error = { code, message: text };
+  notes.clearWarnings({ notify: false });
+  notes.showError({ code, title: "Not loaded", text, anchor: null });
   ui.status.textContent = "Not loaded";
   setPlanState("error");
 }
@@ -295,32 +550,24 @@ function renderSummary(s, options, callMs) {
   );
 }
 
-function renderWarnings(warnings, errorText) {
-  const items = warnings.map((w) => {
+/** The panel's list: every warning (those on a feature are on the map too), and the error. */
+function renderWarnings(warnings, error) {
+  const item = (text, code, feature, cls) => {
     const li = document.createElement("li");
-    li.textContent = sentence(w.message ?? w.code);
-    li.title = w.code;
+    li.textContent = text;
+    li.title = code;
+    li.dataset.code = code;
+    if (Number.isInteger(feature)) li.dataset.feature = String(feature);
+    if (cls) li.className = cls;
     return li;
-  });
-  if (errorText) {
-    const li = document.createElement("li");
-    li.className = "error";
-    li.textContent = errorText;
-    items.push(li);
-  }
+  };
+  const items = warnings.map((w) => item(sentence(w.message ?? w.code), w.code, w.feature));
+  if (error) items.push(item(error.text, error.code, error.feature, "error"));
   ui.warnings.replaceChildren(...items);
 }
 
 function setPlanState(s) {
   document.body.dataset.planState = s;
-}
-
-/** "the field falls…" -> "The field falls….": messages from the planner start lower case. */
-function sentence(text) {
-  const t = String(text ?? "").trim();
-  if (!t) return t;
-  const s = t[0].toUpperCase() + t.slice(1);
-  return /[.!?]$/.test(s) ? s : `${s}.`;
 }
 
 function formatNumber(v, digits) {

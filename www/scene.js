@@ -8,7 +8,8 @@ const RAD = Math.PI / 180;
 
 /** A projection about (lon0, lat0): `forward([lon, lat]) -> [x, y]` in metres, and its inverse. */
 export function makeProjection(lon0, lat0) {
-  const kx = Math.cos(lat0 * RAD) * R * RAD;
+  // A latitude beyond the poles (a broken file) would turn x round; draw it as at 89°.
+  const kx = Math.cos(Math.min(Math.abs(lat0), 89) * RAD) * R * RAD;
   const ky = R * RAD;
   return {
     lon0,
@@ -18,11 +19,13 @@ export function makeProjection(lon0, lat0) {
   };
 }
 
+const isPosition = (p) => Array.isArray(p) && Number.isFinite(p[0]) && Number.isFinite(p[1]);
+
 /** The polygons of a GeoJSON geometry (Polygon or MultiPolygon), each a list of rings. */
 function polygonsOf(geometry) {
   if (!geometry || !Array.isArray(geometry.coordinates)) return [];
   if (geometry.type === "Polygon") return [geometry.coordinates];
-  if (geometry.type === "MultiPolygon") return geometry.coordinates;
+  if (geometry.type === "MultiPolygon") return geometry.coordinates.filter(Array.isArray);
   return [];
 }
 
@@ -65,11 +68,17 @@ export function fieldParts(geojson) {
   return parts;
 }
 
-/** The projection centred on the bounding box of the field boundary (or of all its parts). */
-export function projectionFor(parts) {
-  const rings = parts.boundary ?? [...parts.obstacles, ...parts.prohibited].flat();
+/**
+ * The projection centred on the bounding box of the field boundary (or of all its parts, or when
+ * none of them has a usable position, of `fallback`: the paths of inputFeatures()).
+ */
+export function projectionFor(parts, fallback = []) {
+  let rings = parts.boundary ?? [...parts.obstacles, ...parts.prohibited].flat();
+  const usable = (ring) => Array.isArray(ring) && ring.some(isPosition);
+  if (!rings.some(usable)) rings = fallback.flatMap((f) => f.paths.map((p) => p.points));
   let [x0, y0, x1, y1] = [Infinity, Infinity, -Infinity, -Infinity];
   for (const ring of rings) {
+    if (!Array.isArray(ring)) continue;
     for (const p of ring) {
       if (!Number.isFinite(p?.[0]) || !Number.isFinite(p?.[1])) continue;
       x0 = Math.min(x0, p[0]);
@@ -82,8 +91,9 @@ export function projectionFor(parts) {
   return makeProjection((x0 + x1) / 2, (y0 + y1) / 2);
 }
 
-const projectRing = (ring, f) => ring.filter((p) => Number.isFinite(p?.[0]) && Number.isFinite(p?.[1])).map(f);
-const projectPolygon = (rings, f) => rings.map((r) => projectRing(r, f));
+// Tolerant of broken input (an opened file may have anything where a ring should be).
+const projectRing = (ring, f) => (Array.isArray(ring) ? ring.filter(isPosition).map(f) : []);
+const projectPolygon = (rings, f) => (Array.isArray(rings) ? rings.map((r) => projectRing(r, f)) : []);
 
 /** Bounds `[x0, y0, x1, y1]` of a list of rings, or null. */
 function boundsOf(rings) {
@@ -196,4 +206,113 @@ export function insidePolygon([x, y], rings) {
     }
   }
   return inside;
+}
+
+// ---- input features, to place errors and warnings ------------------------------------------------
+
+/**
+ * Paths of one GeoJSON geometry, `[{ points, closed, ring, part }]` in the input's coordinates:
+ * the rings of a (Multi)Polygon (`ring` its index in the polygon, 0 = exterior), the lines of a
+ * (Multi)LineString, the points of a (Multi)Point. Positions stay at their index in the input; a
+ * position that is not two finite numbers becomes null.
+ */
+function geometryPaths(geometry) {
+  const c = geometry?.coordinates;
+  if (!Array.isArray(c)) return [];
+  const pos = (p) => (isPosition(p) ? [p[0], p[1]] : null);
+  const line = (l) => (Array.isArray(l) ? l.map(pos) : []);
+  const polygon = (rings, part) =>
+    Array.isArray(rings) ? rings.map((r, ring) => ({ points: line(r), closed: true, ring, part })) : [];
+  switch (geometry.type) {
+    case "Polygon":
+      return polygon(c, 0);
+    case "MultiPolygon":
+      return c.flatMap((rings, part) => polygon(rings, part));
+    case "LineString":
+      return [{ points: line(c), closed: false, ring: 0, part: 0 }];
+    case "MultiLineString":
+      return c.map((l, part) => ({ points: line(l), closed: false, ring: 0, part }));
+    case "Point":
+      return [{ points: [pos(c)], closed: false, ring: 0, part: 0 }];
+    case "MultiPoint":
+      return c.map((p, part) => ({ points: [pos(p)], closed: false, ring: 0, part }));
+    default:
+      return [];
+  }
+}
+
+/**
+ * The features of an input as the planner counts them (its errors and warnings carry these
+ * indices): the members of a FeatureCollection's `features`, or the one polygon of a lone Feature
+ * or bare geometry. Each `{ role, name, paths }` (paths as geometryPaths). Never throws.
+ */
+export function inputFeatures(geojson) {
+  if (!geojson || typeof geojson !== "object") return [];
+  const one = (f) => ({
+    role: typeof f?.properties?.role === "string" ? f.properties.role : null,
+    name: typeof f?.properties?.name === "string" ? f.properties.name : null,
+    paths: geometryPaths(f?.geometry),
+  });
+  if (geojson.type === "FeatureCollection") return Array.isArray(geojson.features) ? geojson.features.map(one) : [];
+  if (geojson.type === "Feature") return [one(geojson)];
+  return [{ role: null, name: null, paths: geometryPaths(geojson) }];
+}
+
+/** A feature's paths in local metres (positions that are not numbers stay null). */
+export function projectFeature(feature, projection) {
+  return {
+    ...feature,
+    paths: feature.paths.map((p) => ({ ...p, points: p.points.map((q) => (q ? projection.forward(q) : null)) })),
+  };
+}
+
+/** Bounds `[x0, y0, x1, y1]` of paths (nulls skipped) and extra points, or null. */
+export function pathBounds(paths, points = []) {
+  let b = null;
+  const add = (q) => {
+    if (!q || !Number.isFinite(q[0]) || !Number.isFinite(q[1])) return;
+    if (!b) b = [q[0], q[1], q[0], q[1]];
+    else b = [Math.min(b[0], q[0]), Math.min(b[1], q[1]), Math.max(b[2], q[0]), Math.max(b[3], q[1])];
+  };
+  for (const p of paths) p.points.forEach(add);
+  points.forEach(add);
+  return b;
+}
+
+/**
+ * A point on the outline of paths (local metres) to pin a note to: the middle of the northmost
+ * edge (the top of the feature on the map, where a note covers the least of it), or the one point
+ * of a point feature. Null when the paths have no position.
+ */
+export function outlineAnchor(paths) {
+  let best = null;
+  for (const path of paths) {
+    const pts = path.points.filter(Boolean);
+    if (pts.length === 1 && (!best || pts[0][1] > best[1])) best = pts[0];
+    const n = path.closed ? pts.length : pts.length - 1;
+    for (let i = 0; i < n && pts.length > 1; i++) {
+      const a = pts[i];
+      const b = pts[(i + 1) % pts.length];
+      const m = [(a[0] + b[0]) / 2, (a[1] + b[1]) / 2];
+      if (!best || m[1] > best[1] + 1e-9) best = m;
+    }
+  }
+  return best;
+}
+
+/**
+ * JSON.parse for drawing only: if the text does not parse, NaN and Infinity (which some exporters
+ * write, and JSON cannot carry) are read as null so that the rest of the field can still be drawn.
+ * Returns the value, or undefined when the text cannot be read at all.
+ */
+export function parseForDrawing(text) {
+  try {
+    return JSON.parse(text);
+  } catch {
+    try {
+      return JSON.parse(text.replace(/"(?:[^"\\]|\\.)*"|-?\bInfinity\b|\bNaN\b/g, (m) => (m[0] === '"' ? m : "null")));
+    } catch {
+      return undefined;
+    }
+  }
 }

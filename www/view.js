@@ -30,6 +30,8 @@ export const THEME_VARS = {
   label: ["--label-text", "#161616"],
   labelFill: ["--label-fill", "#ffffff"],
   marker: ["--error-mark", "#d0021b"],
+  warnMark: ["--warn-mark", "#ffd23f"],
+  warnEdge: ["--warn-edge", "#6b4e00"],
   scale: ["--scale-text", "#2b2f28"],
 };
 
@@ -57,6 +59,8 @@ export class PlanView {
     this.field = null; // fieldScene()
     this.plan = null; // planScene()
     this.marker = null; // [x, y] in metres: the place an error points at
+    this.highlights = []; // [{ paths: [{ points, closed }], kind: "error" | "warning" }] in metres
+    this.extraBounds = null; // [x0, y0, x1, y1]: more to fit than the field, e.g. an error's place
     this.machineWidth = 6; // metres, to scale line widths when zoomed far out
     this.cx = 0; // view centre, metres
     this.cy = 0;
@@ -70,6 +74,7 @@ export class PlanView {
     this.theme = readTheme();
     this.hatch = null;
     this.onViewChange = null;
+    this.onDraw = null; // called after every frame, to move what lies over the canvas
 
     this.bindPointers();
     new ResizeObserver(() => this.resize()).observe(canvas);
@@ -89,6 +94,8 @@ export class PlanView {
     this.field = field;
     this.plan = null;
     this.marker = null;
+    this.highlights = [];
+    this.extraBounds = null;
     if (fit) this.fit();
     else this.draw();
   }
@@ -101,6 +108,12 @@ export class PlanView {
     this.draw();
   }
 
+  /** Outlines drawn over everything in the error or warning colour (see `highlights`). */
+  setHighlights(highlights) {
+    this.highlights = highlights ?? [];
+    this.draw();
+  }
+
   /** The view as plain data, for tests and debugging. */
   state() {
     return { cx: this.cx, cy: this.cy, scale: this.scale, fitted: this.fitted, width: this.cssW, height: this.cssH };
@@ -109,7 +122,10 @@ export class PlanView {
   // ---- view transform ------------------------------------------------------------------------
 
   bounds() {
-    return this.field?.bounds ?? null;
+    const a = this.field?.bounds ?? null;
+    const b = this.extraBounds;
+    if (!a || !b) return a ?? b;
+    return [Math.min(a[0], b[0]), Math.min(a[1], b[1]), Math.max(a[2], b[2]), Math.max(a[3], b[3])];
   }
 
   fit() {
@@ -319,8 +335,40 @@ export class PlanView {
       ctx.stroke();
     }
     if (plan) this.drawPaths(plan);
+    this.drawHighlights();
     if (this.marker) this.drawMarker(this.marker);
     this.drawScaleBar();
+    this.onDraw?.();
+  }
+
+  /** The outlines an error (red, solid, on a white halo) or an open warning (dark dashes on a
+   * yellow glow) concerns. */
+  drawHighlights() {
+    const { ctx, theme: t } = this;
+    for (const { paths, kind } of this.highlights) {
+      const error = kind === "error";
+      ctx.beginPath();
+      for (const path of paths) {
+        const pts = path.points.filter(Boolean);
+        if (pts.length === 1) {
+          const [x, y] = this.toScreen(pts[0]);
+          ctx.moveTo(x + 6, y);
+          ctx.arc(x, y, 6, 0, 2 * Math.PI);
+          continue;
+        }
+        this.linePath(pts);
+        if (path.closed) ctx.closePath();
+      }
+      ctx.setLineDash([]);
+      ctx.lineWidth = error ? 7 : 9;
+      ctx.strokeStyle = error ? t.labelFill : t.warnMark;
+      ctx.stroke();
+      if (!error) ctx.setLineDash([7, 5]);
+      ctx.lineWidth = error ? 3.5 : 2.5;
+      ctx.strokeStyle = error ? t.marker : t.warnEdge;
+      ctx.stroke();
+      ctx.setLineDash([]);
+    }
   }
 
   /** Line width of the driven paths: thinner when the swaths crowd together on screen. */
