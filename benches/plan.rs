@@ -1,5 +1,6 @@
 //! Native benchmarks of the whole planner on the corpus fields, each with its README settings.
 //! Run with `cargo bench --bench plan`.
+#![allow(clippy::result_large_err)] // benchmarks keep the plan result whole
 
 #[path = "../tests/common/corpus.rs"]
 mod corpus;

@@ -13,6 +13,8 @@
 //! Exit status: 0 with a plan; 2 when the input or an option is invalid, with one line of JSON
 //! `{"code": ..., "message": ...}` on standard error; 1 when a file cannot be read or written.
 
+#![allow(clippy::result_large_err)] // the error path of a command-line tool
+
 use furrow::options::OPTION_DOCS;
 use furrow::{plan_geojson, PlanError, PlanOptions};
 use serde_json::{Map, Value};

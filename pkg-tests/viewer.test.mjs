@@ -264,7 +264,7 @@ test("viewer: phone layout with touch, pinch zoom", { timeout: TIMEOUT }, async 
     assert.ok(await note.locator(".callout").isHidden(), "closed until tapped");
     await note.locator(".note-badge").tap();
     assert.ok(await note.locator(".callout").isVisible(), "a tap opens the warning");
-    assert.match(await note.locator(".callout").innerText(), /not closed/);
+    assert.match(await note.locator(".callout").innerText(), /was open/);
     assert.ok(inside(await note.locator(".callout").boundingBox(), map), "the warning card inside the map");
     await page.screenshot({ path: join(SHOTS, "viewer-phone-warning.png"), fullPage: true });
     await note.locator(".note-badge").tap();
@@ -442,7 +442,7 @@ test("viewer: opens field files; errors and warnings in words beside the feature
     const card = note.locator(".callout");
     assert.ok(await card.isHidden(), "the words wait for hover, focus or a tap");
     const label = await note.locator(".note-badge").getAttribute("aria-label");
-    assert.match(label, /not closed/, "the badge's accessible name has the words");
+    assert.match(label, /was open/, "the badge's accessible name has the words");
     // Hover shows the words and outlines the feature; leaving hides them.
     const warnBefore = await countColour(page, "--warn-mark");
     await note.locator(".note-badge").hover();
@@ -457,7 +457,7 @@ test("viewer: opens field files; errors and warnings in words beside the feature
     const items = await card.locator("li").evaluateAll((lis) => lis.map((li) => [li.dataset.code, li.textContent]));
     assert.equal(items.length, 2);
     for (const [code, words] of items) {
-      assert.match(words, /^The boundary .+ (closed|turned round)\.$/, `${code}: ${words}`);
+      assert.match(words, /^The field boundary .+ (closed|turned round)\.$/, `${code}: ${words}`);
     }
     assert.ok(inside(await card.boundingBox(), map), "the warning card inside the map");
     assert.equal(await page.locator("#warnings li[data-code=ring_closed]").count(), 1, "listed in the panel too");

@@ -57,6 +57,8 @@ export interface PlanFeatureProperties {
   swath_count?: number;
   /** Index of the input feature an obstacle came from. */
   feature?: number;
+  /** The input feature's name, for obstacles that had one. */
+  name?: string;
   /** Length in metres. */
   length_m?: number;
   /** Compass bearing in degrees: driving direction of a swath, swath direction of a block. */
@@ -147,6 +149,10 @@ export interface FurrowError extends Error {
   vertex?: number;
   /** The offending position, in the input's coordinates. */
   coordinate?: Position;
+  /** For input that is not JSON: the line (from 1) where reading stopped. */
+  line?: number;
+  /** For input that is not JSON: the column (from 1) where reading stopped. */
+  column?: number;
 }
 
 /**

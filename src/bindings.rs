@@ -111,6 +111,12 @@ fn to_js_error(e: &PlanError) -> JsValue {
     if let Some(v) = e.vertex {
         set("vertex", JsValue::from(v as u32));
     }
+    if let Some(l) = e.line {
+        set("line", JsValue::from(l as u32));
+    }
+    if let Some(c) = e.column {
+        set("column", JsValue::from(c as u32));
+    }
     if let Some([x, y]) = e.coordinate {
         let array = js_sys::Array::of2(&JsValue::from(x), &JsValue::from(y));
         set("coordinate", array.into());

@@ -145,6 +145,12 @@ pub struct PlanError {
     /// The offending position in the input's coordinates (longitude, latitude for WGS84).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub coordinate: Option<[f64; 2]>,
+    /// For input that is not JSON: the line (from 1) where reading stopped.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub line: Option<usize>,
+    /// For input that is not JSON: the column (from 1) where reading stopped.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub column: Option<usize>,
 }
 
 impl PlanError {
@@ -157,6 +163,8 @@ impl PlanError {
             ring: None,
             vertex: None,
             coordinate: None,
+            line: None,
+            column: None,
         }
     }
 
@@ -181,6 +189,13 @@ impl PlanError {
     /// The same error, located at a coordinate (in the input's coordinates).
     pub fn at_coordinate(mut self, coordinate: [f64; 2]) -> Self {
         self.coordinate = Some(coordinate);
+        self
+    }
+
+    /// The same error, located at a line and column of the input text.
+    pub fn at_text(mut self, line: usize, column: usize) -> Self {
+        self.line = Some(line);
+        self.column = Some(column);
         self
     }
 

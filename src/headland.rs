@@ -78,7 +78,8 @@ pub fn constant_width(field: &Field, width: f64, passes: u32) -> Result<Headland
             format!(
                 "{passes} headland passes of {width} m take up the whole field; use fewer passes or a narrower width"
             ),
-        ));
+        )
+        .at_feature(field.feature));
     }
     let area_m2 = (boundary.unsigned_area() - inset_field.unsigned_area()).max(0.0);
     let inner = if field.obstacles.is_empty() {
@@ -92,7 +93,8 @@ pub fn constant_width(field: &Field, width: f64, passes: u32) -> Result<Headland
         return Err(PlanError::new(
             ErrorCode::HeadlandConsumesField,
             "the obstacles cover the whole field inside the headland",
-        ));
+        )
+        .at_feature(field.feature));
     }
     Ok(Headlands {
         passes: out,
@@ -137,6 +139,7 @@ mod tests {
                 .map(|polygon| Obstacle {
                     polygon,
                     feature: 1,
+                    name: None,
                 })
                 .collect(),
             prohibited: vec![],

@@ -33,6 +33,9 @@
 //! ```
 
 #![warn(missing_docs)]
+// PlanError is a plain struct with its place in the input (feature, ring, vertex, coordinate,
+// line, column) so that callers can read it directly; it travels only on the cold error path.
+#![allow(clippy::result_large_err)]
 
 pub mod decompose;
 pub mod direction;

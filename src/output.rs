@@ -6,7 +6,7 @@
 //! | kind | geometry | properties |
 //! |---|---|---|
 //! | `block` | Polygon | `index`, `order` (position in the order blocks are worked), `swath_count`, `bearing_deg` |
-//! | `obstacle` | Polygon | `index`, `feature` (index of the input feature) |
+//! | `obstacle` | Polygon | `index`, `feature` (index of the input feature), `name` (if it had one) |
 //! | `swath` | LineString | `sequence`, `index`, `block`, `line`, `length_m`, `bearing_deg` (driving direction) |
 //! | `headland` | LineString | `sequence`, `pass` (1 = outermost), `length_m` |
 //! | `turn` | LineString | `sequence`, `block`, `length_m` |
@@ -80,6 +80,9 @@ pub struct Properties {
     /// Index of the input feature an obstacle came from.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub feature: Option<usize>,
+    /// The input feature's `name`, for obstacles that had one.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub name: Option<String>,
     /// Length, metres.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub length_m: Option<f64>,
@@ -127,6 +130,7 @@ impl Plan {
                     kind: "obstacle",
                     index: Some(i),
                     feature: Some(o.feature),
+                    name: o.name.clone(),
                     ..Default::default()
                 },
                 out.polygon(&o.polygon),

@@ -42,7 +42,8 @@ pub struct InputPolygon {
     pub name: Option<String>,
 }
 
-/// The polygons of an input, in input order, and the features that were skipped.
+/// The polygons of an input, in input order, and the features that were skipped (with the reason,
+/// a phrase such as "it has no geometry").
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct InputFeatures {
     /// Polygons (a MultiPolygon gives one entry per part, all with the same feature index).
@@ -64,24 +65,51 @@ pub fn parse_str(text: &str) -> Result<InputFeatures, PlanError> {
         ));
     }
     let raw: RawObject = serde_json::from_str(text).map_err(|e| {
-        let code = if e.is_syntax() || e.is_eof() {
-            ErrorCode::InvalidJson
+        if e.is_syntax() || e.is_eof() {
+            let hint = if non_number_at(text, e.line(), e.column()) {
+                " (NaN and Infinity are not numbers JSON can carry)"
+            } else {
+                ""
+            };
+            PlanError::new(
+                ErrorCode::InvalidJson,
+                format!(
+                    "the input is not valid JSON: {}{hint}",
+                    plain(&e.to_string())
+                ),
+            )
+            .at_text(e.line(), e.column())
         } else {
-            ErrorCode::InvalidGeojson
-        };
-        let what = if code == ErrorCode::InvalidJson {
-            "the input is not valid JSON"
-        } else {
-            "the input is not valid GeoJSON"
-        };
-        let hint = if code == ErrorCode::InvalidJson && non_number_at(text, e.line(), e.column()) {
-            " (NaN and Infinity are not numbers JSON can carry)"
-        } else {
-            ""
-        };
-        PlanError::new(code, format!("{what}: {e}{hint}"))
+            let error = PlanError::new(
+                ErrorCode::InvalidGeojson,
+                format!("the input is not valid GeoJSON: {}", plain(&e.to_string())),
+            );
+            match failing_feature(text) {
+                Some(i) => error.at_feature(i),
+                None => error,
+            }
+        }
     })?;
     collect(raw)
+}
+
+/// serde's message with its internal type names put in GeoJSON's words.
+fn plain(message: &str) -> String {
+    message
+        .replace("struct RawObject", "a GeoJSON object")
+        .replace("struct RawProperties", "a properties object")
+        .replace("a number or an array of coordinates", "coordinates")
+}
+
+/// For JSON that is not the GeoJSON expected: the first feature that does not read on its own.
+/// Only called on the error path, so reading the text twice costs nothing in a good plan.
+fn failing_feature(text: &str) -> Option<usize> {
+    let value: serde_json::Value = serde_json::from_str(text).ok()?;
+    value
+        .get("features")?
+        .as_array()?
+        .iter()
+        .position(|f| RawObject::deserialize(f).is_err())
 }
 
 /// Whether the text at a 1-based line and column starts with NaN or Infinity.
@@ -220,7 +248,10 @@ fn collect_feature(i: usize, f: RawObject, out: &mut InputFeatures) -> Result<()
         Some("obstacle") => Role::Obstacle,
         Some("prohibited") => Role::Prohibited,
         Some(other) => {
-            out.ignored.push((i, other.to_string()));
+            out.ignored.push((
+                i,
+                format!("its role \"{other}\" is not one the planner knows (boundary, obstacle, prohibited)"),
+            ));
             return Ok(());
         }
     };
@@ -238,7 +269,7 @@ fn collect_feature(i: usize, f: RawObject, out: &mut InputFeatures) -> Result<()
     match f.geometry {
         Some(g) => collect_geometry(i, &g, role, name, forbidden, out),
         None if role == Role::Unspecified => {
-            out.ignored.push((i, "no geometry".to_string()));
+            out.ignored.push((i, "it has no geometry".to_string()));
             Ok(())
         }
         None => Err(invalid(i, format!("feature {i} has no geometry"))),
@@ -292,14 +323,15 @@ fn collect_geometry(
         }
         "Point" | "MultiPoint" | "LineString" | "MultiLineString" | "GeometryCollection" => {
             if role == Role::Unspecified {
-                out.ignored.push((i, g.kind.clone()));
+                out.ignored
+                    .push((i, format!("it is a {}, not a polygon", g.kind)));
             } else {
                 return Err(PlanError::new(
                     ErrorCode::UnsupportedGeometry,
                     format!(
-                        "feature {i} is a {}, but a {} must be a Polygon or MultiPolygon",
+                        "feature {i} is a {}, but {} must be a Polygon or MultiPolygon",
                         g.kind,
-                        role_name(role)
+                        role_phrase(role)
                     ),
                 )
                 .at_feature(i));
@@ -315,13 +347,31 @@ fn collect_geometry(
     Ok(())
 }
 
-/// A role's name as it appears in `properties.role`.
-pub fn role_name(role: Role) -> &'static str {
+impl InputPolygon {
+    /// How messages name this polygon, or ring `ring` of it: "the field boundary", "hole 1 of the
+    /// field boundary", `obstacle "Pond"`, "the obstacle (feature 3)".
+    pub fn subject(&self, ring: usize) -> String {
+        let whole = match (self.role, &self.name) {
+            (Role::Boundary | Role::Unspecified, _) => "the field boundary".to_string(),
+            (Role::Obstacle, Some(name)) => format!("obstacle \"{name}\""),
+            (Role::Prohibited, Some(name)) => format!("prohibited region \"{name}\""),
+            (Role::Obstacle, None) => format!("the obstacle (feature {})", self.feature),
+            (Role::Prohibited, None) => format!("the prohibited region (feature {})", self.feature),
+        };
+        if ring == 0 {
+            whole
+        } else {
+            format!("hole {ring} of {whole}")
+        }
+    }
+}
+
+/// What a role must be, with its article: "the field boundary", "an obstacle".
+fn role_phrase(role: Role) -> &'static str {
     match role {
-        Role::Boundary => "boundary",
-        Role::Obstacle => "obstacle",
-        Role::Prohibited => "prohibited region",
-        Role::Unspecified => "polygon",
+        Role::Boundary | Role::Unspecified => "the field boundary",
+        Role::Obstacle => "an obstacle",
+        Role::Prohibited => "a prohibited region",
     }
 }
 
@@ -400,7 +450,9 @@ mod tests {
         assert_eq!(f.polygons[1].role, Role::Prohibited);
         assert_eq!(f.polygons[1].rings[0][1], [1.0, 0.0]);
         assert_eq!(f.polygons[1].forbidden_bearings_deg, vec![[10.0, 20.0]]);
-        assert_eq!(f.ignored, vec![(2, "road".to_string())]);
+        assert_eq!(f.ignored.len(), 1);
+        assert_eq!(f.ignored[0].0, 2);
+        assert!(f.ignored[0].1.contains("\"road\""), "{}", f.ignored[0].1);
     }
 
     #[test]
@@ -419,8 +471,9 @@ mod tests {
 
     #[test]
     fn truncated_json_is_invalid_json() {
-        let e = parse_str(r#"{"type":"FeatureCollection","features":[{"#).unwrap_err();
+        let e = parse_str("{\"type\":\"FeatureCollection\",\n\"features\":[{").unwrap_err();
         assert_eq!(e.code, ErrorCode::InvalidJson);
+        assert_eq!((e.line, e.column), (Some(2), Some(13)));
         let e = parse_str(r#"{"type":"Polygon","coordinates":[[[NaN,0]]]}"#).unwrap_err();
         assert_eq!(e.code, ErrorCode::InvalidJson);
         assert!(e.message.contains("NaN"), "{}", e.message);
@@ -438,6 +491,13 @@ mod tests {
         assert_eq!(e.code, ErrorCode::InvalidGeojson);
         let e = parse_str(r#"[1,2,3]"#).unwrap_err();
         assert_eq!(e.code, ErrorCode::InvalidGeojson);
+        assert!(!e.message.contains("Raw"), "{}", e.message);
+        let e = parse_str(
+            r#"{"type":"FeatureCollection","features":[
+            {"type":"Feature","geometry":null}, null]}"#,
+        )
+        .unwrap_err();
+        assert_eq!((e.code, e.feature), (ErrorCode::InvalidGeojson, Some(1)));
     }
 
     #[test]

@@ -55,6 +55,8 @@ pub struct Obstacle {
     pub polygon: Polygon,
     /// Index of the input feature it came from.
     pub feature: usize,
+    /// The feature's `name`, if it had one.
+    pub name: Option<String>,
 }
 
 /// An area where some driving directions are forbidden (an escarpment, drainage laterals).
@@ -66,6 +68,28 @@ pub struct ProhibitedRegion {
     pub forbidden: Vec<BearingRange>,
     /// Index of the input feature it came from.
     pub feature: usize,
+    /// The feature's `name`, if it had one.
+    pub name: Option<String>,
+}
+
+impl Obstacle {
+    /// How messages name it: `obstacle "Pond"`, or "the obstacle (feature 3)".
+    pub fn subject(&self) -> String {
+        match &self.name {
+            Some(name) => format!("obstacle \"{name}\""),
+            None => format!("the obstacle (feature {})", self.feature),
+        }
+    }
+}
+
+impl ProhibitedRegion {
+    /// How messages name it: `prohibited region "Slope"`, or "the prohibited region (feature 3)".
+    pub fn subject(&self) -> String {
+        match &self.name {
+            Some(name) => format!("prohibited region \"{name}\""),
+            None => format!("the prohibited region (feature {})", self.feature),
+        }
+    }
 }
 
 impl Field {

@@ -51,7 +51,7 @@ impl Field {
                 Warning::new(
                     WarningCode::OutlineSimplified,
                     format!(
-                        "the boundary's {before} vertices were simplified to {after} (within {tolerance:.2} m)"
+                        "the field boundary was simplified from {before} to {after} points (within {tolerance:.2} m)"
                     ),
                 )
                 .at_feature(self.feature),
@@ -60,13 +60,13 @@ impl Field {
         let polygons = self
             .obstacles
             .iter_mut()
-            .map(|o| (&mut o.polygon, o.feature))
+            .map(|o| (o.subject(), &mut o.polygon, o.feature))
             .chain(
                 self.prohibited
                     .iter_mut()
-                    .map(|p| (&mut p.polygon, p.feature)),
+                    .map(|p| (p.subject(), &mut p.polygon, p.feature)),
             );
-        for (polygon, feature) in polygons {
+        for (subject, polygon, feature) in polygons {
             let before = polygon.exterior().0.len() - 1;
             if let Some(ring) = simplify_ring(polygon.exterior(), tolerance) {
                 let after = ring.0.len() - 1;
@@ -75,7 +75,7 @@ impl Field {
                     Warning::new(
                         WarningCode::OutlineSimplified,
                         format!(
-                            "the outline of feature {feature} was simplified from {before} to {after} vertices (within {tolerance:.2} m)"
+                            "{subject} was simplified from {before} to {after} points (within {tolerance:.2} m)"
                         ),
                     )
                     .at_feature(feature),

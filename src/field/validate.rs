@@ -1,7 +1,7 @@
 //! From parsed GeoJSON to a [`Field`]: choose the boundary, check every coordinate, project to
 //! metres, repair rings, and refuse what cannot be planned with an error that says where.
 
-use super::geojson::{role_name, InputFeatures, InputPolygon, Role};
+use super::geojson::{InputFeatures, InputPolygon, Role};
 use super::landmask::land_within;
 use super::projection::{Frame, TransverseMercator};
 use super::ring::{clean_ring, find_self_intersection, signed_area2, RingRepairs};
@@ -36,7 +36,7 @@ pub fn field_from_input(
         warnings.push(
             Warning::new(
                 WarningCode::IgnoredFeature,
-                format!("feature {feature} was ignored ({why})"),
+                format!("feature {feature} was ignored: {why}"),
             )
             .at_feature(*feature),
         );
@@ -50,13 +50,14 @@ pub fn field_from_input(
     if vertices > MAX_VERTICES {
         return Err(PlanError::new(
             ErrorCode::InputTooLarge,
-            format!("the input has {vertices} vertices; the planner accepts up to {MAX_VERTICES}"),
+            format!("the input has {vertices} points; the planner accepts up to {MAX_VERTICES}: simplify the outlines"),
         ));
     }
-    for p in &input.polygons {
+    let (mut boundary_in, others) = choose_boundary(input.polygons, &mut warnings)?;
+    boundary_in.role = Role::Boundary;
+    for p in std::iter::once(&boundary_in).chain(&others) {
         check_coordinates(p, coordinates)?;
     }
-    let (boundary_in, others) = choose_boundary(input.polygons, &mut warnings)?;
     let frame = match coordinates {
         Coordinates::Wgs84 => {
             let (lon, lat) = centre_lon_lat(&boundary_in.rings[0]);
@@ -95,8 +96,8 @@ pub fn field_from_input(
             return Err(PlanError::new(
                 ErrorCode::HoleCrossingBoundary,
                 format!(
-                    "hole {r} of the boundary (feature {}) crosses the boundary's outer ring",
-                    boundary_in.feature
+                    "{} crosses the boundary's outer ring",
+                    boundary_in.subject(r)
                 ),
             )
             .at_feature(boundary_in.feature)
@@ -107,8 +108,8 @@ pub fn field_from_input(
             return Err(PlanError::new(
                 ErrorCode::HoleCrossingBoundary,
                 format!(
-                    "hole {r} of the boundary (feature {}) lies outside the boundary's outer ring",
-                    boundary_in.feature
+                    "{} lies outside the boundary's outer ring",
+                    boundary_in.subject(r)
                 ),
             )
             .at_feature(boundary_in.feature)
@@ -117,6 +118,7 @@ pub fn field_from_input(
         obstacles.push(Obstacle {
             polygon: hole,
             feature: boundary_in.feature,
+            name: None,
         });
     }
 
@@ -131,11 +133,7 @@ pub fn field_from_input(
             warnings.push(
                 Warning::new(
                     WarningCode::IgnoredFeature,
-                    format!(
-                        "the holes of {} {} were ignored",
-                        role_name(p.role),
-                        p.feature
-                    ),
+                    format!("the holes of {} were ignored", p.subject(0)),
                 )
                 .at_feature(p.feature),
             );
@@ -147,6 +145,7 @@ pub fn field_from_input(
                     obstacles.push(Obstacle {
                         polygon,
                         feature: p.feature,
+                        name: p.name.clone(),
                     });
                 }
                 if inside.clipped {
@@ -154,8 +153,8 @@ pub fn field_from_input(
                         Warning::new(
                             WarningCode::ObstacleClipped,
                             format!(
-                                "obstacle {} reaches over the field boundary; only its part inside the field is kept",
-                                p.feature
+                                "{} reaches over the field boundary; only its part inside the field is kept",
+                                p.subject(0)
                             ),
                         )
                         .at_feature(p.feature),
@@ -169,6 +168,7 @@ pub fn field_from_input(
                         polygon,
                         forbidden: forbidden.clone(),
                         feature: p.feature,
+                        name: p.name.clone(),
                     });
                 }
                 if inside.clipped {
@@ -176,8 +176,8 @@ pub fn field_from_input(
                         Warning::new(
                             WarningCode::ProhibitedClipped,
                             format!(
-                                "prohibited region {} reaches over the field boundary; only its part inside the field is kept",
-                                p.feature
+                                "{} reaches over the field boundary; only its part inside the field is kept",
+                                p.subject(0)
                             ),
                         )
                         .at_feature(p.feature),
@@ -264,10 +264,7 @@ fn check_coordinates(p: &InputPolygon, coordinates: Coordinates) -> Result<(), P
             if !x.is_finite() || !y.is_finite() {
                 return Err(at(PlanError::new(
                     ErrorCode::NonFiniteCoordinate,
-                    format!(
-                        "vertex {v} of ring {r} of feature {} is not a finite number",
-                        p.feature
-                    ),
+                    format!("point {v} of {} is not a finite number", p.subject(r)),
                 )));
             }
             let problem = match coordinates {
@@ -286,7 +283,7 @@ fn check_coordinates(p: &InputPolygon, coordinates: Coordinates) -> Result<(), P
             if let Some(what) = problem {
                 return Err(at(PlanError::new(
                     ErrorCode::CoordinateOutOfRange,
-                    format!("vertex {v} of ring {r} of feature {}: {what}", p.feature),
+                    format!("point {v} of {}: {what}", p.subject(r)),
                 ))
                 .at_coordinate([x, y]));
             }
@@ -294,8 +291,8 @@ fn check_coordinates(p: &InputPolygon, coordinates: Coordinates) -> Result<(), P
                 return Err(at(PlanError::new(
                     ErrorCode::CoordinateOutOfRange,
                     format!(
-                        "vertex {v} of ring {r} of feature {} is at latitude {y}, too near a pole to plan (limit {MAX_ABS_LATITUDE_DEG})",
-                        p.feature
+                        "point {v} of {} is at latitude {y}, too near a pole to plan (the limit is {MAX_ABS_LATITUDE_DEG})",
+                        p.subject(r)
                     ),
                 ))
                 .at_coordinate([x, y]));
@@ -336,7 +333,7 @@ fn check_location(
             ),
         )
         .at_feature(feature)
-        .at_coordinate([lon, lat]));
+        .at_coordinate([round9(lon), round9(lat)]));
     }
     warnings.push(
         Warning::new(
@@ -349,6 +346,11 @@ fn check_location(
         .at_feature(feature),
     );
     Ok(())
+}
+
+/// Degrees rounded to 1e-9 (0.1 mm), as the plan's coordinates are.
+fn round9(deg: f64) -> f64 {
+    (deg * 1e9).round() / 1e9
 }
 
 /// Centre of a ring's bounding box in longitude and latitude, across the antimeridian too.
@@ -386,11 +388,7 @@ fn local_ring(
     frame: &Frame,
     warnings: &mut Vec<Warning>,
 ) -> Result<LineString, PlanError> {
-    let what = if r == 0 {
-        role_name(p.role).to_string()
-    } else {
-        format!("hole {r} of the {}", role_name(p.role))
-    };
+    let what = p.subject(r);
     let input = &p.rings[r];
     let projected: Vec<Coord> = input.iter().map(|&q| frame.to_local(q)).collect();
     let (mut ring, repairs) = clean_ring(&projected);
@@ -398,10 +396,7 @@ fn local_ring(
     if ring.len() < 3 && repairs.distinct >= 3 {
         return Err(PlanError::new(
             ErrorCode::ZeroArea,
-            format!(
-                "the {what} (feature {}) encloses no area: all its points lie on one line",
-                p.feature
-            ),
+            format!("{what} encloses no area: all its points lie on one line"),
         )
         .at_feature(p.feature)
         .at_ring(r));
@@ -409,21 +404,15 @@ fn local_ring(
     if ring.len() < 3 {
         return Err(PlanError::new(
             ErrorCode::TooFewPoints,
-            format!(
-                "the {what} (feature {}) has fewer than 3 distinct points",
-                p.feature
-            ),
+            format!("{what} has fewer than 3 distinct points"),
         )
         .at_feature(p.feature)
         .at_ring(r));
     }
-    if let Some((c, i, j)) = find_self_intersection(&ring) {
+    if let Some((c, _, _)) = find_self_intersection(&ring) {
         return Err(PlanError::new(
             ErrorCode::SelfIntersection,
-            format!(
-                "the {what} (feature {}) crosses itself between its edges {i} and {j}",
-                p.feature
-            ),
+            format!("{what} crosses itself: move its points so that the outline does not cross"),
         )
         .at_feature(p.feature)
         .at_ring(r)
@@ -442,12 +431,11 @@ fn local_ring(
             Warning::new(
                 WarningCode::RingReoriented,
                 format!(
-                    "the {what} (feature {}) ran {}; it was turned round",
-                    p.feature,
+                    "{what} ran {}; it was turned round",
                     if outer {
-                        "clockwise, but an outer ring runs counter-clockwise"
+                        "clockwise, but GeoJSON's outer rings run counter-clockwise"
                     } else {
-                        "counter-clockwise, but a hole runs clockwise"
+                        "counter-clockwise, but GeoJSON's holes run clockwise"
                     }
                 ),
             )
@@ -471,15 +459,15 @@ fn report_repairs(what: &str, feature: usize, r: RingRepairs, warnings: &mut Vec
     if r.was_open {
         warn(
             WarningCode::RingClosed,
-            format!("the {what} (feature {feature}) was not closed; it was closed"),
+            format!("{what} was open (its last point did not repeat its first); it was closed"),
         );
     }
     if r.repeated > 0 {
         warn(
             WarningCode::RepeatedVertices,
             format!(
-                "{} of the {what} (feature {feature}) removed",
-                count(r.repeated, "repeated vertex", "repeated vertices")
+                "{} of {what} removed",
+                count(r.repeated, "repeated point", "repeated points")
             ),
         );
     }
@@ -487,8 +475,8 @@ fn report_repairs(what: &str, feature: usize, r: RingRepairs, warnings: &mut Vec
         warn(
             WarningCode::CollinearVertices,
             format!(
-                "{} on straight edges of the {what} (feature {feature}) removed",
-                count(r.collinear, "vertex", "vertices")
+                "{} on straight edges of {what} removed",
+                count(r.collinear, "point", "points")
             ),
         );
     }
@@ -496,7 +484,7 @@ fn report_repairs(what: &str, feature: usize, r: RingRepairs, warnings: &mut Vec
         warn(
             WarningCode::SpikesRemoved,
             format!(
-                "{} of the {what} (feature {feature}) removed (the outline went out and straight back)",
+                "{} of {what} removed (the outline went out and straight back)",
                 count(r.spikes, "spike", "spikes")
             ),
         );
@@ -512,14 +500,8 @@ fn zero_area(p: &InputPolygon, r: usize, min_m2: f64) -> PlanError {
     PlanError::new(
         ErrorCode::ZeroArea,
         format!(
-            "the {} (feature {}) encloses {} area (less than {min_m2} m²)",
-            if r == 0 {
-                role_name(p.role).to_string()
-            } else {
-                format!("hole {r} of the {}", role_name(p.role))
-            },
-            p.feature,
-            "no or almost no"
+            "{} encloses almost no area (less than {min_m2} m²)",
+            p.subject(r)
         ),
     )
     .at_feature(p.feature)
@@ -586,14 +568,10 @@ fn clip_to_field(
 }
 
 fn outside_error(p: &InputPolygon, frame: &Frame, region: &Polygon, covers: bool) -> PlanError {
-    let what = role_name(p.role);
     let message = if covers {
-        format!("the {what} (feature {}) covers the whole field", p.feature)
+        format!("{} covers the whole field", p.subject(0))
     } else {
-        format!(
-            "the {what} (feature {}) lies outside the field boundary",
-            p.feature
-        )
+        format!("{} lies outside the field boundary", p.subject(0))
     };
     PlanError::new(ErrorCode::ObstacleOutsideField, message)
         .at_feature(p.feature)
@@ -611,8 +589,8 @@ fn bearing_ranges(p: &InputPolygon) -> Result<Vec<BearingRange>, PlanError> {
         return Err(PlanError::new(
             ErrorCode::InvalidGeojson,
             format!(
-                "the forbidden bearings of prohibited region {} must be finite numbers",
-                p.feature
+                "the forbidden bearings of {} must be finite numbers",
+                p.subject(0)
             ),
         )
         .at_feature(p.feature));
@@ -621,8 +599,8 @@ fn bearing_ranges(p: &InputPolygon) -> Result<Vec<BearingRange>, PlanError> {
         return Err(PlanError::new(
             ErrorCode::NoAllowedDirection,
             format!(
-                "prohibited region {} forbids every driving direction; if nothing may be driven there, make it an obstacle",
-                p.feature
+                "{} forbids every driving direction; if nothing may be driven there, make it an obstacle",
+                p.subject(0)
             ),
         )
         .at_feature(p.feature));
@@ -679,21 +657,27 @@ fn merge_overlapping(obstacles: Vec<Obstacle>, warnings: &mut Vec<Warning>) -> V
             out.push(obstacles[group[0]].clone());
             continue;
         }
-        let features: Vec<String> = group
-            .iter()
-            .map(|&i| obstacles[i].feature.to_string())
-            .collect();
         let feature = obstacles[group[0]].feature;
-        warnings.push(
-            Warning::new(
-                WarningCode::ObstaclesMerged,
-                format!(
-                    "overlapping obstacles (features {}) were merged into one",
-                    features.join(", ")
-                ),
-            )
-            .at_feature(feature),
-        );
+        let name = obstacles[group[0]].name.clone();
+        // One warning on each obstacle merged, naming the others.
+        for &i in &group {
+            let others: Vec<String> = group
+                .iter()
+                .filter(|&&j| j != i)
+                .map(|&j| obstacles[j].subject())
+                .collect();
+            warnings.push(
+                Warning::new(
+                    WarningCode::ObstaclesMerged,
+                    format!(
+                        "{} overlaps {}; they were merged into one obstacle",
+                        obstacles[i].subject(),
+                        others.join(" and ")
+                    ),
+                )
+                .at_feature(obstacles[i].feature),
+            );
+        }
         let mut union = MultiPolygon::new(vec![obstacles[group[0]].polygon.clone()]);
         for &i in &group[1..] {
             union = union.union(&obstacles[i].polygon);
@@ -702,6 +686,7 @@ fn merge_overlapping(obstacles: Vec<Obstacle>, warnings: &mut Vec<Warning>) -> V
             out.push(Obstacle {
                 polygon: Polygon::new(polygon.exterior().clone(), vec![]),
                 feature,
+                name: name.clone(),
             });
         }
     }
