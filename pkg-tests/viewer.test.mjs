@@ -1,7 +1,8 @@
 // Smoke test of the viewer (www/) in headless Chromium: it loads the package, plans the default
 // field, draws it, re-plans on input, switches fields, survives planner errors, pans and zooms,
 // and lays out on a phone; it opens field files (the corpus's invalid inputs among them) and shows
-// the planner's errors and warnings in words beside the feature they concern. Screenshots go to
+// the planner's errors and warnings in words beside the feature they concern; it labels obstacles
+// with their classes and plans a headland only where needed. Screenshots go to
 // target/screenshots/.
 //
 //   bash scripts/build.sh            (once: the wasm package and target/site)
@@ -118,7 +119,15 @@ test("viewer: loads, draws, re-plans, switches fields, survives errors", { timeo
     const passes = Number(await page.inputValue("#headlandPasses"));
     await setInput(page, "headlandPasses", passes + 2);
     await ready(page);
-    assert.equal(await page.evaluate(() => window.furrow.plan.summary.headland_pass_count), passes + 2);
+    // (headland_pass_count counts the passes around obstacles too: look at the field's.)
+    const fieldPasses = await page.evaluate(() =>
+      Math.max(
+        ...window.furrow.plan.features
+          .filter((f) => f.properties.kind === "headland" && f.properties.around === "field")
+          .map((f) => f.properties.pass),
+      ),
+    );
+    assert.equal(fieldPasses, passes + 2);
     assert.notEqual(await planKey(page), before, "the plan did not change with the headland passes");
 
     // A fixed bearing re-plans along it; empty goes back to automatic.
@@ -269,6 +278,168 @@ test("viewer: phone layout with touch, pinch zoom", { timeout: TIMEOUT }, async 
     await page.screenshot({ path: join(SHOTS, "viewer-phone-warning.png"), fullPage: true });
     await note.locator(".note-badge").tap();
     assert.ok(await note.locator(".callout").isHidden(), "a second tap closes it");
+
+    // The headland and obstacle options start folded on a phone, their values beside the title;
+    // a tap unfolds them, touch-sized and without sideways scrolling.
+    const more = page.locator("#more-options");
+    assert.equal(await more.getAttribute("open"), null, "folded on a phone");
+    assert.ok(await page.isHidden("#headlandMode"));
+    assert.match(await page.textContent("#more-state"), /All around, last, 1 width/);
+    await more.locator("summary").tap();
+    assert.ok(await page.isVisible("#headlandMode"), "a tap unfolds the options");
+    const targets = await page.evaluate(() =>
+      ["headlandMode", "headlandOrder", "obstacleThreshold"].map((id) => {
+        const r = document.getElementById(id).getBoundingClientRect();
+        return [id, r.width, r.height];
+      }),
+    );
+    for (const [id, w, h] of targets) assert.ok(w >= 44 && h >= 44, `${id} is ${w}x${h}`);
+    assert.ok((await more.locator("summary").boundingBox()).height >= 44, "the fold's title is a touch target");
+    assert.equal(await page.evaluate(() => document.documentElement.scrollWidth), 390, "no sideways scrolling");
+    const area = () => page.evaluate(() => window.furrow.plan.summary.headland_area_m2);
+    const before = await area();
+    await page.selectOption("#headlandMode", "needed");
+    await ready(page);
+    assert.ok((await area()) < before, "headland only where needed is smaller");
+    await more.screenshot({ path: join(SHOTS, "viewer-phone-options.png") });
+    await more.locator("summary").tap();
+    assert.ok(await page.isHidden("#headlandMode"), "a second tap folds them");
+    assert.match(await page.textContent("#more-state"), /Where needed/);
+  });
+});
+
+test("viewer: obstacle classes, lifted swaths, headland only where needed", { timeout: TIMEOUT }, async () => {
+  mkdirSync(SHOTS, { recursive: true });
+  await withViewer({ viewport: { width: 1280, height: 800 }, deviceScaleFactor: 1 }, async (page, base) => {
+    await page.goto(`${base}#obstacle-types`);
+    await ready(page);
+    assert.equal(await page.inputValue("#field"), "obstacle-types");
+    assert.equal(await page.inputValue("#headlandMode"), "constant", "headland all around by default");
+    assert.equal(await page.inputValue("#headlandOrder"), "last", "headland worked last by default");
+    assert.equal(await page.inputValue("#obstacleThreshold"), "", "obstacle threshold: one width by default");
+    // On a screen this short the options start folded, their values beside the title.
+    const more = page.locator("#more-options");
+    assert.equal(await more.getAttribute("open"), null, "folded on a short screen");
+    assert.equal(await page.textContent("#more-state"), "All around, last, 1 width");
+    await more.locator("summary").click();
+    assert.ok(await page.isVisible("#obstacleThreshold"), "a click unfolds them");
+
+    // One obstacle of each class; the map labels every obstacle with its class, on or beside it.
+    const plan = await page.evaluate(() => {
+      const fs = window.furrow.plan.features;
+      const screenBox = (ring) => {
+        const pts = ring.map((c) => window.furrow.view.toScreen(window.furrow.projection.forward(c)));
+        const xs = pts.map((p) => p[0]);
+        const ys = pts.map((p) => p[1]);
+        return { x: Math.min(...xs), y: Math.min(...ys), width: Math.max(...xs) - Math.min(...xs), height: Math.max(...ys) - Math.min(...ys) };
+      };
+      return {
+        obstacles: fs
+          .filter((f) => f.properties.kind === "obstacle")
+          .map((f) => ({ ...f.properties, box: screenBox(f.geometry.coordinates[0]) })),
+        groups: fs.filter((f) => f.properties.kind === "obstacle_group").map((f) => f.properties),
+        lifted: fs.flatMap((f) => f.properties.lifted ?? []).length,
+        warnings: window.furrow.plan.warnings,
+        summary: window.furrow.plan.summary,
+      };
+    });
+    const classes = plan.obstacles.map((o) => o.class).sort();
+    assert.deepEqual([...new Set(classes)], ["A", "B", "C", "D"], `obstacle classes ${classes}`);
+    assert.deepEqual(plan.summary.obstacle_classes, { A: 1, B: 1, C: 2, D: 1 });
+    const { labels, canvas } = await page.evaluate(() => ({
+      labels: window.furrow.view.drawn.classLabels,
+      canvas: window.furrow.view.state(),
+    }));
+    assert.deepEqual(labels.map((l) => l.text).sort(), classes, "a class label for every obstacle");
+    for (const label of labels) {
+      const o = plan.obstacles.find((x) => x.index === label.index);
+      assert.equal(label.text, o.class, `obstacle ${o.index}: labelled with its class`);
+      assert.ok(label.x > 0 && label.y > 0 && label.x < canvas.width && label.y < canvas.height, "label on the map");
+      const d = distanceToBox([label.x, label.y], o.box);
+      assert.ok(d <= 32, `the label of obstacle ${o.index} (${o.class}) is ${d.toFixed(0)} px from it`);
+    }
+    for (let i = 0; i < labels.length; i++) {
+      for (let j = i + 1; j < labels.length; j++) {
+        const [a, b] = [labels[i], labels[j]];
+        assert.ok(Math.abs(a.x - b.x) >= 16 || Math.abs(a.y - b.y) >= 16, `labels ${a.index} and ${b.index} overlap`);
+      }
+    }
+
+    // The two class-C obstacles form a group; the class-A obstacle is passed with the implement lifted.
+    const cs = plan.obstacles.filter((o) => o.class === "C");
+    assert.equal(plan.groups.length, 1);
+    assert.deepEqual(plan.groups[0].members.sort(), cs.map((o) => o.index).sort());
+    assert.ok(cs.every((o) => o.group === plan.groups[0].index), "class-C obstacles name their group");
+    assert.ok(plan.lifted > 0, "some swath is lifted over the class-A obstacle");
+    assert.equal(await page.evaluate(() => window.furrow.view.drawn.liftedStretches), plan.lifted);
+    const a = plan.obstacles.find((o) => o.class === "A");
+    assert.ok(plan.warnings.some((w) => w.code === "implement_lifted" && w.feature === a.feature));
+    assert.equal(await page.locator("#warnings li[data-code=implement_lifted]").count(), 1, "listed in the panel");
+    assert.match(await page.getAttribute(`.map-note[data-feature="${a.feature}"]`, "data-code"), /implement_lifted/);
+
+    // The summary: classes as the map's tags, the new figures.
+    const dd = (key) => page.locator(`#summary dd[data-key=${key}]`);
+    const tags = await dd("obstacle_classes").locator(".class-tag").allInnerTexts();
+    assert.deepEqual(tags, ["A", "B", "C", "D"]);
+    assert.match(await dd("obstacle_classes").innerText(), /A\s*1\s*B\s*1\s*C\s*2\s*D\s*1/);
+    const ratio = plan.summary.remaining_area_ratio;
+    assert.equal(await dd("remaining_area_ratio").innerText(), `${(ratio * 100).toFixed(1)} %`);
+    assert.match(await dd("uncovered_headland_area_m2").innerText(), /^\d[\d,.]* (m²|ha)$/);
+    assert.match(await dd("headland_area_m2").innerText(), /^\d[\d,.]* ha$/);
+    assert.match(await dd("lifted_distance_m").innerText(), /^\d+ m$/);
+    const legend = await page.textContent(".legend");
+    for (const item of ["Obstacle class", "Obstacle group", "Implement lifted"]) assert.ok(legend.includes(item), item);
+    assert.deepEqual(await page.locator("#obstacle-classes .class-tag").allInnerTexts(), ["A", "B", "C", "D"]);
+    await page.screenshot({ path: join(SHOTS, "viewer-classes.png") });
+    await page.locator(".info").screenshot({ path: join(SHOTS, "viewer-classes-summary.png") });
+
+    // The obstacle threshold: at 0 nothing is small enough to be passed over.
+    await setInput(page, "obstacleThreshold", 0);
+    await ready(page);
+    assert.equal(await page.evaluate(() => window.furrow.options.obstacleThreshold), 0);
+    assert.equal(await page.evaluate(() => window.furrow.plan.summary.obstacle_classes.A), 0);
+    assert.equal(await page.evaluate(() => window.furrow.view.drawn.liftedStretches), 0);
+    assert.equal(await page.locator("#warnings li[data-code=implement_lifted]").count(), 0);
+    await setInput(page, "obstacleThreshold", "");
+    await ready(page);
+    assert.equal(await page.evaluate(() => window.furrow.options.obstacleThreshold), null);
+    assert.equal(await page.evaluate(() => window.furrow.plan.summary.obstacle_classes.A), 1);
+
+    // Rectangle: a headland only where the swaths end is smaller than one all around, and its
+    // passes are open lines.
+    await page.selectOption("#field", "rectangle");
+    await page.waitForFunction(() => window.furrow.field?.features?.[0]?.properties?.name === "rectangle");
+    await ready(page);
+    const headland = () =>
+      page.evaluate(() => ({
+        value: Number(document.querySelector("#summary dd[data-key=headland_area_m2]").dataset.value),
+        text: document.querySelector("#summary dd[data-key=headland_area_m2]").textContent,
+        closed: window.furrow.plan.features.filter((f) => f.properties.kind === "headland").map((f) => f.properties.closed),
+        first: window.furrow.plan.features.find((f) => f.properties.sequence === 0).properties.kind,
+      }));
+    const around = await headland();
+    assert.ok(around.closed.length > 0 && around.closed.every((c) => c === true), "closed passes all around");
+    await page.selectOption("#headlandMode", "needed");
+    await ready(page);
+    assert.equal(await page.evaluate(() => window.furrow.options.headlandMode), "needed");
+    const needed = await headland();
+    assert.ok(needed.value < around.value, `headland area ${needed.value} m² where needed, ${around.value} m² all around`);
+    const ha = (t) => Number(t.replace(/[^\d.]/g, ""));
+    assert.ok(ha(needed.text) < ha(around.text), `the summary shows ${needed.text}, was ${around.text}`);
+    assert.ok(needed.closed.length > 0 && needed.closed.every((c) => c === false), "open passes where needed");
+    assert.ok((await countColour(page, "--headland")) > 100, "the open passes are drawn");
+    // Headland first (harvest): the route starts on the headland.
+    assert.equal(needed.first, "swath");
+    await page.selectOption("#headlandOrder", "first");
+    await ready(page);
+    assert.equal((await headland()).first, "headland");
+    // Another field keeps the headland settings.
+    await page.selectOption("#field", "obstacle-types");
+    await page.waitForFunction(() => window.furrow.field?.features?.[0]?.properties?.name === "obstacle-types");
+    await ready(page);
+    assert.equal(await page.inputValue("#headlandMode"), "needed");
+    assert.equal(await page.inputValue("#headlandOrder"), "first");
+    await page.screenshot({ path: join(SHOTS, "viewer-classes-needed.png") });
   });
 });
 

@@ -11,12 +11,64 @@ export interface GeoJsonObject {
  */
 export type FieldInput = GeoJsonObject | string;
 
+/**
+ * Where the field headland runs: all around the field (`"constant"`), or only along the edges
+ * where swaths end (`"needed"`).
+ */
+export type HeadlandMode = "constant" | "needed";
+
+/**
+ * When the headland passes are worked: before the swaths, from the field edge in (`"first"`, as
+ * in harvesting), or after them, finishing at the field edge (`"last"`, as in seeding).
+ */
+export type HeadlandOrder = "first" | "last";
+
+/**
+ * The number of headland passes along one edge of the boundary as drawn: edge `i` runs from
+ * point `i` to point `i + 1` of the boundary's outer ring in the input.
+ */
+export interface EdgePasses {
+  /** Index of the edge in the outer ring as drawn, from 0. */
+  edge: number;
+  /** Number of passes along it, 0 for none (at most 50). */
+  passes: number;
+}
+
 /** Planner options. Every option has a default; see `defaultOptions()`. */
 export interface PlanOptions {
   /** Working width of the implement, metres: swath spacing and headland pass width. Default 6. */
   width?: number;
-  /** Number of headland passes around the field. Default 2. */
+  /**
+   * Number of headland passes around the field and around each obstacle that gets a headland.
+   * Default 2.
+   */
   headlandPasses?: number;
+  /**
+   * Where the field headland runs: `"constant"`, all around the field, or `"needed"`, only along
+   * edges where swaths end. Default `"constant"`.
+   */
+  headlandMode?: HeadlandMode;
+  /**
+   * In `"needed"` mode, boundary edges within this many degrees of the swath direction get no
+   * headland. At least 0 and less than 90. Default 5.
+   */
+  headlandTolerance?: number;
+  /**
+   * Passes along particular edges of the boundary as drawn, overriding `headlandMode` and
+   * `headlandPasses` there (0 passes for none). Default none.
+   */
+  edgePasses?: EdgePasses[];
+  /**
+   * Whether the headland passes are worked before the swaths (`"first"`, harvest) or after them
+   * (`"last"`, seeding). Default `"last"`.
+   */
+  headlandOrder?: HeadlandOrder;
+  /**
+   * Obstacles narrower than this across the driving direction (metres) do not split the field:
+   * swaths run past them with the implement lifted (class A). `null` or absent: one working
+   * width.
+   */
+  obstacleThreshold?: number | null;
   /** Minimum turning radius of the machine, metres. Default 8. */
   turnRadius?: number;
   /**
@@ -36,14 +88,41 @@ export interface PlanOptions {
 }
 
 /** What a plan feature is. */
-export type PlanFeatureKind = "block" | "obstacle" | "swath" | "headland" | "turn" | "connection";
+export type PlanFeatureKind =
+  | "block"
+  | "obstacle"
+  | "obstacle_group"
+  | "swath"
+  | "headland"
+  | "turn"
+  | "connection";
+
+/**
+ * How an obstacle is dealt with (Zhou et al.): `"A"`, small across the driving direction, passed
+ * over with the implement lifted; `"B"`, near the boundary, merged into the field headland;
+ * `"C"`, closer than a working width to another obstacle, merged with it into an
+ * `obstacle_group`; `"D"`, with its own headland.
+ */
+export type ObstacleClass = "A" | "B" | "C" | "D";
+
+/** Number of obstacles of each class. */
+export interface ObstacleClassCounts {
+  /** Passed over with the implement lifted. */
+  A: number;
+  /** Merged into the field headland. */
+  B: number;
+  /** Merged with neighbouring obstacles into an obstacle group. */
+  C: number;
+  /** With their own headland. */
+  D: number;
+}
 
 /** Properties of a plan feature; which are present depends on `kind`. */
 export interface PlanFeatureProperties {
   kind: PlanFeatureKind;
   /** Position in driving order, from 0 (swath, headland, turn, connection). */
   sequence?: number;
-  /** Index of the block, obstacle or swath. */
+  /** Index of the block, obstacle, obstacle group or swath. */
   index?: number;
   /** Position of a block in the order blocks are worked. */
   order?: number;
@@ -51,7 +130,7 @@ export interface PlanFeatureProperties {
   block?: number;
   /** The swath line a swath lies on, counted across the field. */
   line?: number;
-  /** Which headland pass, 1 = outermost. */
+  /** Which headland pass, 1 = nearest the boundary or obstacle it runs around. */
   pass?: number;
   /** Number of swaths of a block. */
   swath_count?: number;
@@ -63,6 +142,24 @@ export interface PlanFeatureProperties {
   length_m?: number;
   /** Compass bearing in degrees: driving direction of a swath, swath direction of a block. */
   bearing_deg?: number;
+  /** The class of an obstacle; `"C"` for an obstacle group. */
+  class?: ObstacleClass;
+  /** For a class-C obstacle: the `index` of the obstacle group it was merged into. */
+  group?: number;
+  /** For an obstacle group: the indices of the obstacles merged into it (its convex hull). */
+  members?: number[];
+  /** What a headland pass runs around: the field boundary or an obstacle (or obstacle group). */
+  around?: "field" | "obstacle";
+  /**
+   * Whether a headland pass is a closed loop (its last point repeats its first). In `"needed"`
+   * mode the passes along the field edges are open lines.
+   */
+  closed?: boolean;
+  /**
+   * Where along a swath the implement is lifted over a class-A obstacle: `[from, to]` metres from
+   * the swath's first point (as driven), in order. Absent when it is never lifted.
+   */
+  lifted?: [number, number][];
 }
 
 export type Position = [number, number];
@@ -89,8 +186,18 @@ export interface PlanSummary {
   connection_distance_m: number;
   total_distance_m: number;
   field_area_m2: number;
+  /** The bands of headland passes along the boundary and around obstacles that have them. */
   headland_area_m2: number;
+  /** Where the swaths lie (obstacles left out). */
   inner_field_area_m2: number;
+  /** Inner field area over field area: the share left for swaths, 0 to 1. */
+  remaining_area_ratio: number;
+  /** Headland area no pass covers: corners rounded to the turning radius, necks too narrow to turn in. */
+  uncovered_headland_area_m2: number;
+  /** Distance along swaths driven with the implement lifted over class-A obstacles. */
+  lifted_distance_m: number;
+  /** Number of obstacles of each class. */
+  obstacle_classes: ObstacleClassCounts;
   dropped_swath_count: number;
   /** Swath direction, compass degrees in [0, 180). */
   bearing_deg: number;
@@ -98,10 +205,28 @@ export interface PlanSummary {
   planning_ms: number;
 }
 
+/** The codes of warnings in a plan. */
+export type WarningCode =
+  | "ring_closed"
+  | "repeated_vertices"
+  | "collinear_vertices"
+  | "spikes_removed"
+  | "ring_reoriented"
+  | "obstacle_clipped"
+  | "obstacles_merged"
+  | "outline_simplified"
+  | "field_at_sea"
+  | "prohibited_clipped"
+  | "ignored_feature"
+  | "short_swaths_dropped"
+  | "straight_connections"
+  | "implement_lifted";
+
 export interface PlanWarning {
-  code: string;
+  /** What the warning is about; see the README's warning reference. */
+  code: WarningCode;
   message: string;
-  /** Index of the input feature concerned. */
+  /** Index of the input feature concerned (for `implement_lifted`, the class-A obstacle). */
   feature?: number;
 }
 

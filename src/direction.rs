@@ -120,6 +120,7 @@ mod tests {
         use crate::field::Frame;
         let f = Field {
             boundary: polygon![(x: 0., y: 0.), (x: 1., y: 0.), (x: 1., y: 1.)],
+            drawn_boundary: vec![],
             obstacles: vec![],
             prohibited: vec![],
             name: None,
@@ -142,6 +143,7 @@ mod tests {
         use crate::field::Frame;
         let f = Field {
             boundary: polygon![(x: 0., y: 0.), (x: 100., y: 0.), (x: 100., y: 10.), (x: 0., y: 10.)],
+            drawn_boundary: vec![],
             obstacles: vec![],
             prohibited: vec![],
             name: None,

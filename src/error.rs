@@ -246,6 +246,9 @@ pub enum WarningCode {
     ShortSwathsDropped,
     /// Blocks are joined by straight connections that may cross crop or obstacles.
     StraightConnections,
+    /// An obstacle is small across the driving direction (class A): swaths run past it with the
+    /// implement lifted.
+    ImplementLifted,
 }
 
 impl WarningCode {
@@ -264,6 +267,7 @@ impl WarningCode {
         WarningCode::IgnoredFeature,
         WarningCode::ShortSwathsDropped,
         WarningCode::StraightConnections,
+        WarningCode::ImplementLifted,
     ];
 
     /// The code as it appears in JSON.
@@ -282,6 +286,7 @@ impl WarningCode {
             WarningCode::IgnoredFeature => "ignored_feature",
             WarningCode::ShortSwathsDropped => "short_swaths_dropped",
             WarningCode::StraightConnections => "straight_connections",
+            WarningCode::ImplementLifted => "implement_lifted",
         }
     }
 }

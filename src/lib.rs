@@ -6,8 +6,9 @@
 //! The pipeline, one module per stage:
 //!
 //! 1. [`field`]: read GeoJSON, project to local metres, repair and validate;
-//! 2. [`headland`]: headland passes around the boundary and the inner field they leave;
-//! 3. [`direction`]: the driving direction of the swaths;
+//! 2. [`direction`]: the driving direction of the swaths;
+//! 3. [`obstacles`] and [`headland`]: obstacle classes A-D, headland passes around the boundary
+//!    and the obstacles, and the inner field they leave;
 //! 4. [`swath`]: parallel swaths one working width apart covering the inner field;
 //! 5. [`decompose`]: blocks of swaths that can be worked one after the other;
 //! 6. [`route`]: the order of blocks, swaths and headland passes;
@@ -44,6 +45,7 @@ pub mod field;
 pub mod geometry;
 pub mod headland;
 pub mod metrics;
+pub mod obstacles;
 pub mod options;
 pub mod output;
 pub mod path;

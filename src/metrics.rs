@@ -3,6 +3,7 @@
 use crate::decompose::Blocks;
 use crate::field::Field;
 use crate::headland::Headlands;
+use crate::obstacles::{ObstacleClass, ObstacleClasses};
 use crate::path::{Path, SegmentKind};
 use crate::swath::Swaths;
 use geo::Area;
@@ -33,10 +34,21 @@ pub struct Summary {
     pub total_distance_m: f64,
     /// Area of the field, inside the boundary and outside obstacles.
     pub field_area_m2: f64,
-    /// Area of the headland band.
+    /// Area of the headland: the bands of headland passes along the boundary and around the
+    /// obstacles that have them.
     pub headland_area_m2: f64,
     /// Area of the inner field where the swaths lie (outside obstacles).
     pub inner_field_area_m2: f64,
+    /// Inner field area over the area of the field less the obstacles that have headlands: the
+    /// share left for swaths (Fields2Cover's remaining-area objective for headlands).
+    pub remaining_area_ratio: f64,
+    /// Headland area no pass covers: corners rounded to the turning radius, and necks too narrow
+    /// to turn in.
+    pub uncovered_headland_area_m2: f64,
+    /// Distance along swaths driven with the implement lifted over small (class A) obstacles.
+    pub lifted_distance_m: f64,
+    /// Number of obstacles of each class, A to D.
+    pub obstacle_classes: ClassCounts,
     /// Swath pieces shorter than the minimum swath length, left to the headland.
     pub dropped_swath_count: usize,
     /// The swath direction as a compass bearing in degrees, in `[0, 180)`.
@@ -45,9 +57,27 @@ pub struct Summary {
     pub planning_ms: f64,
 }
 
+/// Number of obstacles of each class.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize)]
+pub struct ClassCounts {
+    /// Passed over with the implement lifted.
+    #[serde(rename = "A")]
+    pub a: usize,
+    /// Merged into the field headland.
+    #[serde(rename = "B")]
+    pub b: usize,
+    /// Merged with a neighbouring obstacle.
+    #[serde(rename = "C")]
+    pub c: usize,
+    /// With their own headland.
+    #[serde(rename = "D")]
+    pub d: usize,
+}
+
 /// Measures a plan.
 pub fn summarise(
     field: &Field,
+    obstacles: &ObstacleClasses,
     headlands: &Headlands,
     swaths: &Swaths,
     blocks: &Blocks,
@@ -58,6 +88,8 @@ pub fn summarise(
     let turning_distance_m = path.length_of(SegmentKind::Turn);
     let connection_distance_m = path.length_of(SegmentKind::Connection);
     let working_distance_m = swath_distance_m + headland_distance_m;
+    let field_area_m2 = field.area_m2();
+    let inner_field_area_m2 = headlands.inner.unsigned_area();
     Summary {
         swath_count: swaths.swaths.len(),
         turn_count: path.count_of(SegmentKind::Turn),
@@ -69,9 +101,30 @@ pub fn summarise(
         turning_distance_m,
         connection_distance_m,
         total_distance_m: working_distance_m + turning_distance_m + connection_distance_m,
-        field_area_m2: field.area_m2(),
+        field_area_m2,
         headland_area_m2: headlands.area_m2,
-        inner_field_area_m2: headlands.inner.unsigned_area(),
+        inner_field_area_m2,
+        remaining_area_ratio: {
+            // Of the field less the obstacles the headland runs round (class A ones are worked
+            // over, so they count as field).
+            let region = inner_field_area_m2 + headlands.area_m2;
+            if region > 0.0 {
+                (inner_field_area_m2 / region).min(1.0)
+            } else {
+                0.0
+            }
+        },
+        uncovered_headland_area_m2: headlands.uncovered_area_m2,
+        lifted_distance_m: swaths
+            .lifts
+            .iter()
+            .fold(0.0, |sum, l| sum + (l.along.1 - l.along.0)),
+        obstacle_classes: ClassCounts {
+            a: obstacles.count(ObstacleClass::A),
+            b: obstacles.count(ObstacleClass::B),
+            c: obstacles.count(ObstacleClass::C),
+            d: obstacles.count(ObstacleClass::D),
+        },
         dropped_swath_count: swaths.dropped,
         bearing_deg: swaths.bearing.to_degrees(),
         planning_ms: 0.0,

@@ -4,6 +4,7 @@
 use crate::error::{ErrorCode, PlanError};
 use crate::field::Coordinates;
 use crate::geometry::{forbids_every_direction, BearingRange};
+use crate::headland::{EdgePasses, HeadlandMode, HeadlandOrder};
 use serde::{Deserialize, Serialize};
 
 /// How the field is to be planned. Every option has a default; JavaScript passes them as an object
@@ -26,8 +27,26 @@ pub struct PlanOptions {
     /// Working width of the implement, metres: the distance between neighbouring swaths and the
     /// width of each headland pass.
     pub width: f64,
-    /// Number of headland passes driven around the field boundary.
+    /// Number of headland passes driven around the field boundary and around each obstacle that
+    /// gets a headland.
     pub headland_passes: u32,
+    /// Where the field headland runs: all around (`constant`), or only along edges where swaths
+    /// end (`needed`).
+    pub headland_mode: HeadlandMode,
+    /// In `needed` mode, boundary edges within this many degrees of the swath direction get no
+    /// headland.
+    #[serde(rename = "headlandTolerance")]
+    pub headland_tolerance_deg: f64,
+    /// Passes along particular edges of the boundary as drawn (edge `i` runs from point `i` to
+    /// point `i + 1` of the outer ring), overriding the mode; 0 for none.
+    pub edge_passes: Vec<EdgePasses>,
+    /// Whether the headland passes are worked before the swaths (`first`, as in harvesting) or
+    /// after them (`last`, as in seeding).
+    pub headland_order: HeadlandOrder,
+    /// Obstacles narrower than this across the driving direction (metres) do not split the
+    /// field: swaths run past them with the implement lifted (class A). `None` means one working
+    /// width.
+    pub obstacle_threshold: Option<f64>,
     /// Minimum turning radius of the machine, metres.
     pub turn_radius: f64,
     /// Driving direction of the swaths as a compass bearing in degrees (0 = north, clockwise; a
@@ -50,6 +69,11 @@ impl Default for PlanOptions {
         PlanOptions {
             width: 6.0,
             headland_passes: 2,
+            headland_mode: HeadlandMode::Constant,
+            headland_tolerance_deg: 5.0,
+            edge_passes: Vec::new(),
+            headland_order: HeadlandOrder::Last,
+            obstacle_threshold: None,
             turn_radius: 8.0,
             bearing_deg: None,
             forbidden_bearings_deg: Vec::new(),
@@ -70,7 +94,32 @@ pub const OPTION_DOCS: &[(&str, &str, &str)] = &[
     (
         "headlandPasses",
         "count",
-        "number of headland passes around the field (default 2)",
+        "number of headland passes around the field and around each obstacle that gets a headland (default 2)",
+    ),
+    (
+        "headlandMode",
+        "constant|needed",
+        "headland all around the field, or only along edges where swaths end (default constant)",
+    ),
+    (
+        "headlandTolerance",
+        "degrees",
+        "in needed mode, edges within this angle of the swath direction get no headland (default 5)",
+    ),
+    (
+        "edgePasses",
+        "[{edge,passes},...]",
+        "passes along particular boundary edges as drawn (edge i runs from point i to i+1), 0 for none (default none)",
+    ),
+    (
+        "headlandOrder",
+        "first|last",
+        "work the headland passes before the swaths (harvest) or after them (seeding) (default last)",
+    ),
+    (
+        "obstacleThreshold",
+        "metres",
+        "obstacles narrower than this across the driving direction are passed over with the implement lifted (default: one working width)",
     ),
     (
         "turnRadius",
@@ -157,6 +206,31 @@ impl PlanOptions {
                 "option `forbiddenBearings` forbids every driving direction; leave at least one range of directions open",
             ));
         }
+        if !(self.headland_tolerance_deg.is_finite()
+            && (0.0..90.0).contains(&self.headland_tolerance_deg))
+        {
+            return out_of_range(
+                "headlandTolerance",
+                format!("{}", self.headland_tolerance_deg),
+                "at least 0 and less than 90 degrees",
+            );
+        }
+        if let Some(e) = self
+            .edge_passes
+            .iter()
+            .find(|e| e.passes > MAX_HEADLAND_PASSES)
+        {
+            return out_of_range(
+                "edgePasses",
+                format!("{} passes for edge {}", e.passes, e.edge),
+                &format!("at most {MAX_HEADLAND_PASSES} passes"),
+            );
+        }
+        if let Some(t) = self.obstacle_threshold {
+            if !(t.is_finite() && t >= 0.0) {
+                return out_of_range("obstacleThreshold", format!("{t}"), "0 or more metres");
+            }
+        }
         if let Some(m) = self.min_swath_length {
             if !(m.is_finite() && m >= 0.0) {
                 return out_of_range("minSwathLength", format!("{m}"), "0 or more metres");
@@ -172,6 +246,11 @@ impl PlanOptions {
         })?;
         options.validate()?;
         Ok(options)
+    }
+
+    /// The class-A obstacle threshold in metres, with its default applied.
+    pub fn obstacle_threshold_m(&self) -> f64 {
+        self.obstacle_threshold.unwrap_or(self.width)
     }
 
     /// The minimum swath length in metres, with its default applied.
@@ -210,6 +289,9 @@ mod tests {
             r#"{"headlandPasses": 51}"#,
             r#"{"turnRadius": -1}"#,
             r#"{"minSwathLength": -1}"#,
+            r#"{"headlandTolerance": 90}"#,
+            r#"{"obstacleThreshold": -2}"#,
+            r#"{"edgePasses": [{"edge": 0, "passes": 99}]}"#,
         ] {
             let e = PlanOptions::from_json_str(text).unwrap_err();
             assert_eq!(e.code, ErrorCode::OptionOutOfRange, "{text}");

@@ -6,21 +6,23 @@
 //! | kind | geometry | properties |
 //! |---|---|---|
 //! | `block` | Polygon | `index`, `order` (position in the order blocks are worked), `swath_count`, `bearing_deg` |
-//! | `obstacle` | Polygon | `index`, `feature` (index of the input feature), `name` (if it had one) |
-//! | `swath` | LineString | `sequence`, `index`, `block`, `line`, `length_m`, `bearing_deg` (driving direction) |
-//! | `headland` | LineString | `sequence`, `pass` (1 = outermost), `length_m` |
+//! | `obstacle` | Polygon | `index`, `feature` (index of the input feature), `name` (if it had one), `class` (`A`-`D`), `group` (for class C: the `obstacle_group` it was merged into) |
+//! | `obstacle_group` | Polygon | `index`, `class` (`C`), `members` (indices of the obstacles merged) |
+//! | `swath` | LineString | `sequence`, `index`, `block`, `line`, `length_m`, `bearing_deg` (driving direction), `lifted` (if any: `[from, to]` metres from the swath's first point where the implement is lifted over a class A obstacle) |
+//! | `headland` | LineString | `sequence`, `pass` (1 = nearest the boundary or obstacle), `around` (`field` or `obstacle`), `closed`, `length_m` |
 //! | `turn` | LineString | `sequence`, `block`, `length_m` |
 //! | `connection` | LineString | `sequence`, `length_m` |
 //!
 //! Drivable features (`swath`, `headland`, `turn`, `connection`) carry `sequence`, their position
 //! in driving order from 0, and follow each other in that order in `features`; each starts where
-//! the one before it ends. Blocks and obstacles come first. The collection has two more members:
+//! the one before it ends. Blocks, obstacles and obstacle groups come first. The collection has two more members:
 //! `summary` ([`Summary`]) and `warnings` (a list of `{code, message, feature?}`).
 
 use crate::error::Warning;
 use crate::field::Frame;
 use crate::geometry::bearing_of;
 use crate::metrics::Summary;
+use crate::obstacles::ObstacleClass;
 use crate::path::SegmentKind;
 use crate::plan::Plan;
 use crate::route::RouteStep;
@@ -54,7 +56,7 @@ pub struct Feature {
 /// The properties of a plan feature; which are present depends on `kind`.
 #[derive(Debug, Clone, Default, Serialize)]
 pub struct Properties {
-    /// `block`, `obstacle`, `swath`, `headland`, `turn` or `connection`.
+    /// `block`, `obstacle`, `obstacle_group`, `swath`, `headland`, `turn` or `connection`.
     pub kind: &'static str,
     /// Position in driving order (drivable features).
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -89,6 +91,25 @@ pub struct Properties {
     /// Compass bearing, degrees: the driving direction of a swath, the swath direction of a block.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub bearing_deg: Option<f64>,
+    /// The class of an obstacle (`A`-`D`, Zhou et al.); `C` for an obstacle group.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub class: Option<&'static str>,
+    /// The obstacle group a class-C obstacle was merged into.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub group: Option<usize>,
+    /// The obstacles merged into an obstacle group.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub members: Option<Vec<usize>>,
+    /// What a headland pass runs around: `field` or `obstacle`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub around: Option<&'static str>,
+    /// Whether a headland pass is a closed path.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub closed: Option<bool>,
+    /// Where along a swath the implement is lifted over small obstacles: `[from, to]` metres from
+    /// its first point.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub lifted: Option<Vec<[f64; 2]>>,
 }
 
 /// A GeoJSON geometry of a plan feature.
@@ -125,16 +146,40 @@ impl Plan {
             ));
         }
         for (i, o) in self.field.obstacles.iter().enumerate() {
+            let class = self.obstacles.class.get(i).copied();
             features.push(out.feature(
                 Properties {
                     kind: "obstacle",
                     index: Some(i),
                     feature: Some(o.feature),
                     name: o.name.clone(),
+                    class: class.map(|c| c.as_str()),
+                    group: if class == Some(ObstacleClass::C) {
+                        self.obstacles.hole_of.get(i).copied().flatten()
+                    } else {
+                        None
+                    },
                     ..Default::default()
                 },
                 out.polygon(&o.polygon),
             ));
+        }
+        for (g, hole) in self.obstacles.holes.iter().enumerate() {
+            if hole.members.len() < 2 {
+                continue;
+            }
+            for part in &hole.shape.0 {
+                features.push(out.feature(
+                    Properties {
+                        kind: "obstacle_group",
+                        index: Some(g),
+                        class: Some(ObstacleClass::C.as_str()),
+                        members: Some(hole.members.clone()),
+                        ..Default::default()
+                    },
+                    out.polygon(part),
+                ));
+            }
         }
         for (sequence, seg) in self.path.segments.iter().enumerate() {
             let mut p = Properties {
@@ -144,16 +189,25 @@ impl Plan {
                 ..Default::default()
             };
             match seg.step.and_then(|k| self.route.steps.get(k)) {
-                Some(&RouteStep::Swath { swath, block, .. }) => {
+                Some(&RouteStep::Swath {
+                    swath,
+                    block,
+                    reversed,
+                }) => {
                     p.index = Some(swath);
                     p.block = Some(block);
                     p.line = self.swaths.swaths.get(swath).map(|s| s.line_index);
                     if let (Some(&a), Some(&b)) = (seg.line.0.first(), seg.line.0.last()) {
                         p.bearing_deg = Some(round(bearing_of(a, b).to_degrees(), 1e-6));
                     }
+                    p.lifted = self.lifted(swath, reversed);
                 }
-                Some(&RouteStep::HeadlandPass { pass }) => {
-                    p.pass = self.headlands.passes.get(pass).map(|h| h.index);
+                Some(&RouteStep::HeadlandPass { pass, .. }) => {
+                    if let Some(h) = self.headlands.passes.get(pass) {
+                        p.pass = Some(h.index);
+                        p.around = Some(h.around.as_str());
+                        p.closed = Some(h.closed);
+                    }
                 }
                 None => {}
             }
@@ -174,6 +228,26 @@ impl Plan {
     pub fn to_geojson_string(&self) -> String {
         // ok: the output types hold only strings, integers and finite floats; serde_json cannot fail.
         serde_json::to_string(&self.to_geojson()).unwrap_or_default()
+    }
+
+    /// Where the implement is lifted along swath `i`, metres from its first point as driven.
+    fn lifted(&self, i: usize, reversed: bool) -> Option<Vec<[f64; 2]>> {
+        let s = self.swaths.swaths.get(i)?;
+        let start = self.swaths.lifts.partition_point(|l| l.swath < i);
+        let mut out: Vec<[f64; 2]> = self.swaths.lifts[start..]
+            .iter()
+            .take_while(|l| l.swath == i)
+            .map(|l| {
+                let (a, b) = if reversed {
+                    (s.along.1 - l.along.1, s.along.1 - l.along.0)
+                } else {
+                    (l.along.0 - s.along.0, l.along.1 - s.along.0)
+                };
+                [round(a, 1e-3), round(b, 1e-3)]
+            })
+            .collect();
+        out.sort_by(|a, b| a[0].total_cmp(&b[0]));
+        (!out.is_empty()).then_some(out)
     }
 
     /// The block of the swath driven just before path segment `k`.

@@ -72,13 +72,13 @@ const MIN_CONNECTOR_M: f64 = 1e-6;
 /// Builds the path of a route: worked segments joined by straight connectors.
 ///
 /// ```
-/// use furrow::{decompose::cluster_swaths, path::{build_path, SegmentKind}};
+/// use furrow::{decompose::cluster_swaths, headland::HeadlandOrder, path::{build_path, SegmentKind}};
 /// use furrow::{route::boustrophedon, swath::generate};
 /// use geo::{polygon, MultiPolygon};
 ///
 /// let field = polygon![(x: 0., y: 0.), (x: 30., y: 0.), (x: 30., y: 100.), (x: 0., y: 100.)];
 /// let swaths = generate(&MultiPolygon::new(vec![field]), 0.0, 6.0, 6.0)?;
-/// let route = boustrophedon(&swaths, &cluster_swaths(&swaths), &[], None);
+/// let route = boustrophedon(&swaths, &cluster_swaths(&swaths), &[], HeadlandOrder::Last, None);
 /// let path = build_path(&route, &swaths, &[]);
 /// let turns = path.segments.iter().filter(|s| s.kind == SegmentKind::Turn).count();
 /// assert_eq!(turns, 4); // five swaths, four turns between them
@@ -104,16 +104,19 @@ pub fn build_path(route: &Route, swaths: &Swaths, passes: &[HeadlandPass]) -> Pa
                 };
                 (LineString::new(vec![a, b]), SegmentKind::Swath, Some(block))
             }
-            RouteStep::HeadlandPass { pass } => {
+            RouteStep::HeadlandPass { pass, reversed } => {
                 let Some(p) = passes.get(pass) else {
                     continue;
                 };
-                let (_, entry) = nearest_on_ring(&p.ring, last.map(|l| l.0));
-                (
-                    ring_starting_at(&p.ring, entry),
-                    SegmentKind::HeadlandPass,
-                    None,
-                )
+                let line = if p.closed {
+                    let (_, entry) = nearest_on_ring(&p.line, last.map(|l| l.0));
+                    ring_starting_at(&p.line, entry)
+                } else if reversed {
+                    LineString::new(p.line.0.iter().rev().copied().collect())
+                } else {
+                    p.line.clone()
+                };
+                (line, SegmentKind::HeadlandPass, None)
             }
         };
         let (Some(&start), Some(&end)) = (line.0.first(), line.0.last()) else {
@@ -232,10 +235,18 @@ mod tests {
         let inner = polygon![(x: 6., y: 6.), (x: 94., y: 6.), (x: 94., y: 94.), (x: 6., y: 94.)];
         let passes = vec![HeadlandPass {
             index: 1,
-            ring: LineString::from(vec![(3., 3.), (97., 3.), (97., 97.), (3., 97.), (3., 3.)]),
+            line: LineString::from(vec![(3., 3.), (97., 3.), (97., 97.), (3., 97.), (3., 3.)]),
+            closed: true,
+            around: crate::headland::PassAround::Field,
         }];
         let swaths = generate(&MultiPolygon::new(vec![inner]), 0.4, 6.0, 6.0).unwrap();
-        let route = boustrophedon(&swaths, &cluster_swaths(&swaths), &passes, None);
+        let route = boustrophedon(
+            &swaths,
+            &cluster_swaths(&swaths),
+            &passes,
+            crate::headland::HeadlandOrder::Last,
+            None,
+        );
         let path = build_path(&route, &swaths, &passes);
         for w in path.segments.windows(2) {
             let a = *w[0].line.0.last().unwrap();

@@ -1,4 +1,6 @@
-//! The planner: field → headlands → direction → swaths → blocks → route → path → metrics.
+//! The planner: field → direction → obstacle classes and headlands → swaths → blocks → route →
+//! path → metrics. The direction comes first because obstacle classes and headlands that run
+//! only where swaths end depend on it.
 //!
 //! Each stage is a module of its own with its own types; this module runs them in order and
 //! keeps their results together in a [`Plan`].
@@ -8,12 +10,14 @@ use crate::direction::{choose_bearing, DirectionRule};
 use crate::error::{PlanError, Warning, WarningCode};
 use crate::field::simplify::tolerance_for_width;
 use crate::field::Field;
-use crate::headland::{constant_width, Headlands};
+use crate::headland::edges::{passes_per_edge, EdgeRule};
+use crate::headland::{build, HeadlandSettings, Headlands};
 use crate::metrics::{summarise, Summary};
+use crate::obstacles::{classify, ClassSettings, ObstacleClass, ObstacleClasses};
 use crate::options::PlanOptions;
 use crate::path::{build_path, Path};
 use crate::route::{boustrophedon, Route};
-use crate::swath::{generate, Swaths};
+use crate::swath::{generate, lifts, Swaths};
 use web_time::Instant;
 
 /// A coverage plan and everything the stages found on the way to it.
@@ -23,6 +27,8 @@ pub struct Plan {
     pub field: Field,
     /// The options used.
     pub options: PlanOptions,
+    /// The class of each obstacle and the holes the headlands run around.
+    pub obstacles: ObstacleClasses,
     /// Headland passes and the inner field.
     pub headlands: Headlands,
     /// The swaths.
@@ -92,7 +98,6 @@ pub(crate) fn plan_stages(
     options.validate()?;
     let width = options.width;
     warnings.extend(field.simplify(tolerance_for_width(width)));
-    let headlands = constant_width(&field, width, options.headland_passes)?;
     let rule = match options.bearing_deg {
         Some(bearing_deg) => DirectionRule::Fixed { bearing_deg },
         None => DirectionRule::LongestEdge {
@@ -100,12 +105,65 @@ pub(crate) fn plan_stages(
         },
     };
     let bearing = choose_bearing(&field, rule, &options.forbidden_bearings_deg)?;
-    let swaths = generate(
+    let edge_passes = passes_per_edge(
+        &field.boundary,
+        &field.drawn_boundary,
+        &EdgeRule {
+            mode: options.headland_mode,
+            passes: options.headland_passes,
+            bearing,
+            tolerance: options.headland_tolerance_deg.to_radians(),
+        },
+        &options.edge_passes,
+    )?;
+    let obstacles = classify(
+        &field,
+        &ClassSettings {
+            bearing,
+            width,
+            threshold: options.obstacle_threshold_m(),
+            obstacle_passes: options.headland_passes,
+            edge_passes: &edge_passes,
+        },
+    );
+    let headlands = build(
+        &field.boundary,
+        &obstacles.hole_polygons(),
+        &HeadlandSettings {
+            width,
+            turn_radius: options.turn_radius,
+            obstacle_passes: options.headland_passes,
+            edge_passes: &edge_passes,
+        },
+    )
+    .map_err(|e| e.at_feature(field.feature))?;
+    let mut swaths = generate(
         &headlands.inner,
         bearing,
         width,
         options.min_swath_length_m(),
     )?;
+    let small: Vec<(usize, &geo::Polygon)> = field
+        .obstacles
+        .iter()
+        .enumerate()
+        .filter(|&(i, _)| obstacles.class[i] == ObstacleClass::A)
+        .map(|(i, o)| (i, &o.polygon))
+        .collect();
+    swaths.lifts = lifts(&swaths, &small);
+    for &(i, _) in &small {
+        warnings.push(
+            Warning::new(
+                WarningCode::ImplementLifted,
+                format!(
+                    "{} is less than {:.1} m across the driving direction; swaths run past it with the implement lifted",
+                    field.obstacles[i].subject(),
+                    options.obstacle_threshold_m()
+                ),
+            )
+            .at_feature(field.obstacles[i].feature),
+        );
+    }
     if swaths.dropped > 0 {
         warnings.push(Warning::new(
             WarningCode::ShortSwathsDropped,
@@ -130,12 +188,19 @@ pub(crate) fn plan_stages(
             ),
         ));
     }
-    let route = boustrophedon(&swaths, &blocks, &headlands.passes, None);
+    let route = boustrophedon(
+        &swaths,
+        &blocks,
+        &headlands.passes,
+        options.headland_order,
+        None,
+    );
     let path = build_path(&route, &swaths, &headlands.passes);
-    let summary = summarise(&field, &headlands, &swaths, &blocks, &path);
+    let summary = summarise(&field, &obstacles, &headlands, &swaths, &blocks, &path);
     Ok(Plan {
         field,
         options: options.clone(),
+        obstacles,
         headlands,
         swaths,
         blocks,

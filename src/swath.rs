@@ -55,6 +55,71 @@ pub struct Swaths {
     pub swaths: Vec<Swath>,
     /// Pieces dropped because they were shorter than the minimum swath length.
     pub dropped: usize,
+    /// Where the implement is lifted over small (class A) obstacles, ordered by swath.
+    pub lifts: Vec<Lift>,
+}
+
+/// A stretch of a swath where the implement is lifted over a small obstacle (class A) that the
+/// swath runs past.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Lift {
+    /// Index of the swath.
+    pub swath: usize,
+    /// Index of the obstacle (into the field's obstacles).
+    pub obstacle: usize,
+    /// Start and end along the swath line, metres (the sweep frame's `along` coordinates).
+    pub along: (f64, f64),
+}
+
+/// The stretches where swaths pass over the given obstacles (index and outline): wherever an
+/// obstacle reaches into a swath's strip, the implement is lifted over the obstacle's length
+/// along the swath.
+///
+/// ```
+/// use furrow::swath::{generate, lifts};
+/// use geo::{polygon, MultiPolygon};
+///
+/// let strip = polygon![(x: 0., y: 0.), (x: 30., y: 0.), (x: 30., y: 100.), (x: 0., y: 100.)];
+/// let swaths = generate(&MultiPolygon::new(vec![strip]), 0.0, 6.0, 6.0)?;
+/// // A 2 m pole at x = 11..13, y = 50..52: in the strip of the swath at x = 9 and the one at x = 15.
+/// let pole = polygon![(x: 11., y: 50.), (x: 13., y: 50.), (x: 13., y: 52.), (x: 11., y: 52.)];
+/// let l = lifts(&swaths, &[(0, &pole)]);
+/// assert_eq!(l.iter().map(|l| l.swath).collect::<Vec<_>>(), vec![1, 2]);
+/// assert_eq!(l[0].along, (50.0, 52.0));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn lifts(swaths: &Swaths, obstacles: &[(usize, &geo::Polygon)]) -> Vec<Lift> {
+    let half = swaths.width / 2.0;
+    let mut out = Vec::new();
+    for &(index, polygon) in obstacles {
+        let mut c = (f64::INFINITY, f64::NEG_INFINITY);
+        let mut a = (f64::INFINITY, f64::NEG_INFINITY);
+        for &p in &polygon.exterior().0 {
+            let (x, y) = swaths.frame.project(p);
+            c = (c.0.min(x), c.1.max(x));
+            a = (a.0.min(y), a.1.max(y));
+        }
+        for s in &swaths.swaths {
+            if s.across + half <= c.0 || s.across - half >= c.1 {
+                continue;
+            }
+            let from = a.0.max(s.along.0);
+            let to = a.1.min(s.along.1);
+            if from < to {
+                out.push(Lift {
+                    swath: s.index,
+                    obstacle: index,
+                    along: (from, to),
+                });
+            }
+        }
+    }
+    out.sort_by(|x, y| {
+        (x.swath, x.along.0)
+            .partial_cmp(&(y.swath, y.along.0))
+            .unwrap_or(std::cmp::Ordering::Equal)
+    });
+    out
 }
 
 /// Offsets (across the field) of the swath lines covering `[lo, hi]` with strips of `width`.
@@ -142,6 +207,7 @@ pub fn generate(
         frame,
         swaths,
         dropped,
+        lifts: Vec::new(),
     })
 }
 

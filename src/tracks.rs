@@ -13,7 +13,7 @@ use geo::LineString;
 pub enum LaneKind {
     /// A swath centre line.
     Swath,
-    /// A headland pass centre line (closed).
+    /// A headland pass centre line (closed, or open where some edges have no headland).
     HeadlandPass,
 }
 
@@ -52,10 +52,10 @@ pub fn lanes(plan: &Plan) -> Vec<Lane> {
                 index: swath,
                 line: LineString::new(vec![s.centre.start, s.centre.end]),
             }),
-            RouteStep::HeadlandPass { pass } => plan.headlands.passes.get(pass).map(|p| Lane {
+            RouteStep::HeadlandPass { pass, .. } => plan.headlands.passes.get(pass).map(|p| Lane {
                 kind: LaneKind::HeadlandPass,
                 index: pass,
-                line: p.ring.clone(),
+                line: p.line.clone(),
             }),
         })
         .collect()

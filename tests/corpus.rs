@@ -193,7 +193,9 @@ fn check_path(plan: &Plan, name: &str) {
                 assert_eq!(f["geometry"]["type"], "LineString");
                 next += 1;
             }
-            "block" | "obstacle" => assert_eq!(f["geometry"]["type"], "Polygon"),
+            "block" | "obstacle" | "obstacle_group" => {
+                assert_eq!(f["geometry"]["type"], "Polygon")
+            }
             other => panic!("{name}: unknown kind {other}"),
         }
     }
@@ -215,21 +217,8 @@ fn check_path(plan: &Plan, name: &str) {
     assert!(geojson["warnings"].is_array());
 }
 
-/// Headland pass k lies (k - 1/2) w inside the boundary, away from rounded corners.
-fn check_headland_passes(plan: &Plan, name: &str) {
-    let w = plan.options.width;
-    let boundary = plan.field.boundary.exterior();
-    for pass in &plan.headlands.passes {
-        let expected = (pass.index as f64 - 0.5) * w;
-        for c in &pass.ring.0 {
-            let d = Euclidean.distance(&Point(*c), boundary);
-            assert!(
-                (d - expected).abs() < 0.01,
-                "{name}: pass {} vertex {d} m from the boundary, expected {expected}",
-                pass.index
-            );
-        }
-    }
+/// The inner field is part of the field (the passes are checked in tests/headlands.rs).
+fn check_headland_passes(plan: &Plan, _name: &str) {
     let inner_area = plan.headlands.inner.unsigned_area();
     assert!(inner_area > 0.0 && inner_area < plan.field.boundary.unsigned_area());
 }

@@ -4,6 +4,7 @@
 //!
 //! The regular suite runs a few hundred cases; set PROPTEST_CASES for a long run.
 
+use furrow::headland::{HeadlandMode, HeadlandOrder};
 use furrow::{plan_geojson, ErrorCode, PlanOptions};
 use proptest::prelude::*;
 
@@ -41,14 +42,35 @@ fn options() -> impl Strategy<Value = PlanOptions> {
         0.0..30.0f64,
         prop::option::of(-720.0..720.0f64),
         prop::option::of(0.0..50.0f64),
+        any::<(bool, bool)>(),
+        prop::option::of(0.0..40.0f64),
     )
         .prop_map(
-            |(width, headland_passes, turn_radius, bearing_deg, min_swath_length)| PlanOptions {
+            |(
                 width,
                 headland_passes,
                 turn_radius,
                 bearing_deg,
                 min_swath_length,
+                (needed, first),
+                obstacle_threshold,
+            )| PlanOptions {
+                width,
+                headland_passes,
+                turn_radius,
+                bearing_deg,
+                min_swath_length,
+                headland_mode: if needed {
+                    HeadlandMode::Needed
+                } else {
+                    HeadlandMode::Constant
+                },
+                headland_order: if first {
+                    HeadlandOrder::First
+                } else {
+                    HeadlandOrder::Last
+                },
+                obstacle_threshold,
                 ..PlanOptions::default()
             },
         )

@@ -5,7 +5,8 @@
 //
 // State for tests and debugging: body[data-plan-state] = loading | ready | error, and after each
 // plan body[data-swath-count] and body[data-plan-ms]; window.furrow holds the last plan or error,
-// and window.furrow.loadField(geojsonTextOrObject, name) plans a field given by the page.
+// and window.furrow.loadField(geojsonTextOrObject, name) plans a field given by the page;
+// window.furrow.view.drawn says what the last frame drew (the obstacle class labels among it).
 import { ERROR_HINTS, MapNotes, featureLabel, sentence } from "./notes.js";
 import { initPlanner, runPlan } from "./planner.js";
 import {
@@ -22,7 +23,17 @@ import {
 import { PlanView } from "./view.js";
 
 const DEFAULT_FIELD = "obstacle-types";
-const OPTION_INPUTS = ["width", "headlandPasses", "turnRadius", "bearing"];
+const OPTION_INPUTS = [
+  "width",
+  "headlandPasses",
+  "turnRadius",
+  "bearing",
+  "headlandMode",
+  "headlandOrder",
+  "obstacleThreshold",
+];
+const CHOICES = new Set(["headlandMode", "headlandOrder"]); // <select>s: their value is the option
+const OPTIONAL = new Set(["bearing", "obstacleThreshold"]); // empty: null, the planner's default
 const OPENED = ":opened"; // value of the field picker's entry for an opened file
 const MAX_FILE_BYTES = 64 * 1024 * 1024; // the planner refuses more than 32 MB anyway
 
@@ -34,6 +45,8 @@ const ui = {
   note: $("field-note"),
   inputs: Object.fromEntries(OPTION_INPUTS.map((id) => [id, $(id)])),
   suggested: $("suggested"),
+  more: $("more-options"),
+  moreState: $("more-state"),
   status: $("status"),
   summary: $("summary"),
   warnings: $("warnings"),
@@ -138,6 +151,10 @@ function bindControls() {
   });
   bindDrop(document.querySelector(".map"));
   for (const input of Object.values(ui.inputs)) input.addEventListener("input", replan);
+  // On a phone (or a short screen) the headland and obstacle options start folded, so that the
+  // map (or the plan's figures) are in view; their values show beside the title.
+  if (matchMedia("(max-width: 760px), (max-height: 860px)").matches) ui.more.open = false;
+  showMoreState();
   ui.suggested.addEventListener("click", () => {
     if (!state.entry || state.entry.opened) return;
     applySuggested(state.entry);
@@ -309,6 +326,8 @@ async function fetchJson(url) {
   return res.json();
 }
 
+/** The field's suggested machine settings; the headland mode, order and obstacle threshold are
+ * the user's, and stay. */
 function applySuggested(entry) {
   const set = (id, v) => {
     ui.inputs[id].value = Number.isFinite(v) ? String(v) : "";
@@ -331,12 +350,17 @@ function readOptions() {
     headlandPasses: "number of headland passes",
     turnRadius: "turning radius",
     bearing: "bearing",
+    obstacleThreshold: "obstacle threshold",
   };
   for (const [id, input] of Object.entries(ui.inputs)) {
+    if (CHOICES.has(id)) {
+      options[id] = input.value;
+      continue;
+    }
     const text = input.value.trim();
     const badInput = input.validity.badInput; // text the number input cannot read, e.g. "1e"
-    if (id === "bearing" && text === "" && !badInput) {
-      options.bearing = null;
+    if (OPTIONAL.has(id) && text === "" && !badInput) {
+      options[id] = null;
       continue;
     }
     const value = Number(text);
@@ -349,11 +373,23 @@ function readOptions() {
   return { options, problems };
 }
 
+/** The folded options' values, beside their title: "All around, last, 6 m". */
+function showMoreState() {
+  const text = (id) => ui.inputs[id].selectedOptions?.[0]?.textContent ?? "";
+  const threshold = ui.inputs.obstacleThreshold.value.trim();
+  ui.moreState.textContent = [
+    text("headlandMode"),
+    text("headlandOrder").replace(/ \(.*\)$/, "").toLowerCase(),
+    threshold === "" ? "1 width" : `${threshold} m`,
+  ].join(", ");
+}
+
 /**
  * Plans the current field with the current inputs and shows the result; returns
  * `{ plan, error }`.
  */
 function replan() {
+  showMoreState();
   if (state.source == null) return { plan: null, error: null };
   const fit = state.fitPending;
   state.fitPending = false;
@@ -376,21 +412,27 @@ function showPlan(plan, options, callMs) {
   state.errorHighlight = [];
   view.extraBounds = null;
   notes.hideError();
-  view.setPlan(planScene(plan, state.projection), { machineWidth: options.width });
+  const warnings = plan.warnings ?? [];
+  const noteGroups = warningGroups(warnings);
+  // The obstacle class labels keep clear of the warning badges.
+  view.setPlan(planScene(plan, state.projection), {
+    machineWidth: options.width,
+    keepClear: noteGroups.map((g) => g.anchor),
+  });
   const s = plan.summary ?? {};
   ui.status.textContent = `Plan of ${state.entry.name}`;
   renderSummary(s, options, callMs);
-  const warnings = plan.warnings ?? [];
   renderWarnings(warnings);
-  showWarningNotes(warnings);
+  notes.showWarnings(noteGroups);
   updateHighlights();
   document.body.dataset.swathCount = String(s.swath_count ?? 0);
   document.body.dataset.planMs = String(s.planning_ms ?? callMs);
   setPlanState("ready");
 }
 
-/** A badge on the outline of each feature that warnings name; several on one feature share it. */
-function showWarningNotes(warnings) {
+/** The warning notes: a badge on the outline of each feature that warnings name; several on one
+ * feature share it. */
+function warningGroups(warnings) {
   const byFeature = new Map();
   for (const w of warnings) {
     if (!Number.isInteger(w.feature)) continue;
@@ -404,7 +446,7 @@ function showWarningNotes(warnings) {
     if (!anchor) continue; // nothing to pin it to: the panel lists it
     groups.push({ feature, label: featureLabel(f, feature), anchor, warnings: list });
   }
-  notes.showWarnings(groups);
+  return groups;
 }
 
 /** The outlines the view highlights: the error's feature, and the features of open warnings. */
@@ -516,38 +558,82 @@ function markInvalid(ids) {
   }
 }
 
+/**
+ * The figures of the plan. Each row's `dd` carries `data-key`, the summary member it shows, and
+ * `data-value`, its number as the planner gave it (for tests and for copying).
+ */
 function renderSummary(s, options, callMs) {
-  const km = (m) => `${formatNumber((m ?? 0) / 1000, 2)} km`;
-  const ha = (m2) => `${formatNumber((m2 ?? 0) / 10000, 2)} ha`;
+  const num = (v) => (!Number.isFinite(v) || Math.abs(v) < 1e-9 ? 0 : v); // no "-0"
+  const km = (m) => `${formatNumber(num(m) / 1000, 2)} km`;
+  const ha = (m2) => `${formatNumber(num(m2) / 10000, 2)} ha`;
+  // Small areas (corners a pass cannot reach) in square metres, where 0.00 ha would hide them.
+  const area = (m2) => (num(m2) >= 1000 ? ha(m2) : `${formatNumber(num(m2), 0)} m²`);
   const swaths =
     s.dropped_swath_count > 0 ? `${s.swath_count} (${s.dropped_swath_count} too short, left out)` : `${s.swath_count}`;
   const bearing = `${formatNumber(s.bearing_deg ?? 0, 1)}°${options.bearing == null ? " (auto)" : ""}`;
+  const classes = s.obstacle_classes ?? {};
+  const classCount = ["A", "B", "C", "D"].reduce((n, c) => n + (classes[c] ?? 0), 0);
   const rows = [
-    ["Swaths", swaths],
-    ["Turns", s.turn_count],
-    ["Blocks", s.block_count],
-    ["Headland passes", s.headland_pass_count],
-    ["Working distance", km(s.working_distance_m)],
-    ["Turning distance", km(s.turning_distance_m)],
-    ["Connections", km(s.connection_distance_m)],
-    ["Total distance", km(s.total_distance_m), "total"],
-    ["Field area", ha(s.field_area_m2)],
-    ["Headland area", ha(s.headland_area_m2)],
-    ["Inner field", ha(s.inner_field_area_m2)],
-    ["Swath bearing", bearing],
-    ["Planning time", `${formatNumber(s.planning_ms ?? 0, 2)} ms`],
+    ["Swaths", swaths, { key: "swath_count" }],
+    ["Turns", s.turn_count, { key: "turn_count" }],
+    ["Blocks", s.block_count, { key: "block_count" }],
+    ["Headland passes", s.headland_pass_count, { key: "headland_pass_count" }],
+    ["Working distance", km(s.working_distance_m), { key: "working_distance_m" }],
+    ["Turning distance", km(s.turning_distance_m), { key: "turning_distance_m" }],
+    ["Connections", km(s.connection_distance_m), { key: "connection_distance_m" }],
+    ["Total distance", km(s.total_distance_m), { key: "total_distance_m", cls: "total" }],
+    ["Field area", ha(s.field_area_m2), { key: "field_area_m2" }],
+    ["Headland area", ha(s.headland_area_m2), { key: "headland_area_m2" }],
+    [
+      "Uncovered headland",
+      area(s.uncovered_headland_area_m2),
+      { key: "uncovered_headland_area_m2", title: "Headland no pass covers: rounded corners, necks too narrow to turn in" },
+    ],
+    ["Inner field", ha(s.inner_field_area_m2), { key: "inner_field_area_m2" }],
+    [
+      "Remaining area",
+      `${formatNumber(num(s.remaining_area_ratio) * 100, 1)} %`,
+      { key: "remaining_area_ratio", title: "Inner field over field area: the share left for swaths" },
+    ],
+    ["Obstacle classes", classCount ? classTags(classes) : "none", { key: "obstacle_classes" }],
+    ...(num(s.lifted_distance_m) > 0 || classes.A > 0
+      ? [["Implement lifted", `${formatNumber(num(s.lifted_distance_m), 0)} m`, { key: "lifted_distance_m" }]]
+      : []),
+    ["Swath bearing", bearing, { key: "bearing_deg" }],
+    [
+      "Planning time",
+      `${formatNumber(s.planning_ms ?? 0, 2)} ms`,
+      { key: "planning_ms", title: `${formatNumber(callMs, 2)} ms with the GeoJSON conversion` },
+    ],
   ];
   ui.summary.replaceChildren(
-    ...rows.flatMap(([label, value, cls]) => {
+    ...rows.flatMap(([label, value, { key, cls, title }]) => {
       const dt = document.createElement("dt");
       const dd = document.createElement("dd");
       dt.textContent = label;
-      dd.textContent = String(value ?? "–");
+      if (value instanceof Node) dd.append(value);
+      else dd.textContent = String(value ?? "–");
+      dd.dataset.key = key;
+      const raw = s[key];
+      dd.dataset.value = typeof raw === "object" && raw !== null ? JSON.stringify(raw) : String(raw ?? "");
       if (cls) dt.className = dd.className = cls;
-      if (label === "Planning time") dd.title = `${formatNumber(callMs, 2)} ms with the GeoJSON conversion`;
+      if (title) dt.title = dd.title = title;
       return [dt, dd];
     }),
   );
+}
+
+/** "A1 B1 C2 D1", each class in the tag the map labels obstacles with. */
+function classTags(classes) {
+  const out = document.createDocumentFragment();
+  for (const c of ["A", "B", "C", "D"]) {
+    const tag = document.createElement("span");
+    tag.className = "class-tag";
+    tag.dataset.class = c;
+    tag.textContent = c;
+    out.append(tag, String(classes[c] ?? 0));
+  }
+  return out;
 }
 
 /** The panel's list: every warning (those on a feature are on the map too), and the error. */

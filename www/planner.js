@@ -2,7 +2,7 @@
 // take and return plain data (structured-clonable), never DOM objects or wasm handles.
 //
 //   const { version } = await initPlanner();
-//   const result = runPlan(fieldGeoJson, { width, headlandPasses, turnRadius, bearing });
+//   const result = runPlan(fieldGeoJson, { width, headlandPasses, turnRadius, bearing, headlandMode, ... });
 //   result.plan   (a GeoJSON FeatureCollection with summary and warnings), or
 //   result.error  ({ code, message, feature?, ring?, vertex?, coordinate? })
 import init, { plan, version } from "./pkg/furrow.js";

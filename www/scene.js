@@ -118,14 +118,17 @@ export function fieldScene(parts, projection) {
 }
 
 /**
- * The plan in local metres: blocks with a label point, the drivable segments by kind (each
- * `{ points, props }`), and where the route starts and ends.
+ * The plan in local metres: blocks with a label point, obstacles with their class (A-D) and a
+ * label point, obstacle groups (the hulls class-C obstacles were merged into), the drivable
+ * segments by kind (each `{ points, props }`; a swath the implement is lifted on also has
+ * `worked` and `lifted`, lists of pieces), and where the route starts and ends.
  */
 export function planScene(plan, projection) {
   const f = projection.forward;
   const scene = {
     blocks: [],
     obstacles: [],
+    groups: [],
     paths: { headland: [], swath: [], turn: [], connection: [] },
     start: null,
     end: null,
@@ -139,11 +142,27 @@ export function planScene(plan, projection) {
       const rings = projectPolygon(geometry.coordinates, f);
       scene.blocks.push({ rings, index: props.index, order: props.order, label: labelPoint(rings) });
     } else if (props.kind === "obstacle" && geometry?.type === "Polygon") {
-      scene.obstacles.push(projectPolygon(geometry.coordinates, f));
+      const rings = projectPolygon(geometry.coordinates, f);
+      if (!rings[0]?.length) continue;
+      scene.obstacles.push({
+        rings,
+        index: props.index,
+        feature: props.feature,
+        name: props.name ?? null,
+        class: typeof props.class === "string" ? props.class : null,
+        group: props.group ?? null,
+        label: labelPoint(rings),
+      });
+    } else if (props.kind === "obstacle_group" && geometry?.type === "Polygon") {
+      const rings = projectPolygon(geometry.coordinates, f);
+      if (rings[0]?.length) scene.groups.push({ rings, index: props.index, members: props.members ?? [] });
     } else if (props.kind in scene.paths && geometry?.type === "LineString") {
       const points = projectRing(geometry.coordinates, f);
       if (points.length < 2) continue;
       const seg = { points, props };
+      if (props.kind === "swath" && Array.isArray(props.lifted) && props.lifted.length) {
+        Object.assign(seg, splitLifted(points, props.lifted, props.length_m));
+      }
       scene.paths[props.kind].push(seg);
       const seq = props.sequence ?? 0;
       if (!first || seq < first.props.sequence) first = seg;
@@ -153,6 +172,56 @@ export function planScene(plan, projection) {
   if (first) scene.start = first.points[0];
   if (last) scene.end = last.points[last.points.length - 1];
   return scene;
+}
+
+/**
+ * A line cut into the pieces where the implement works and where it is lifted: `lifted` are
+ * `[from, to]` distances from the first point in metres along a line `length` metres long (the
+ * planner's own length; the pieces are placed at the same fractions of the drawn line, whose
+ * projection differs a little). Returns `{ worked: [points], lifted: [points] }`.
+ */
+export function splitLifted(points, lifted, length) {
+  const cum = [0];
+  for (let i = 1; i < points.length; i++) {
+    cum.push(cum[i - 1] + Math.hypot(points[i][0] - points[i - 1][0], points[i][1] - points[i - 1][1]));
+  }
+  const drawn = cum[cum.length - 1];
+  const k = Number.isFinite(length) && length > 0 ? drawn / length : 1;
+  const at = (d) => {
+    const t = Math.max(0, Math.min(drawn, d));
+    let i = 1;
+    while (i < cum.length - 1 && cum[i] < t) i++;
+    const span = cum[i] - cum[i - 1] || 1;
+    const u = (t - cum[i - 1]) / span;
+    const [a, b] = [points[i - 1], points[i]];
+    return { i, p: [a[0] + (b[0] - a[0]) * u, a[1] + (b[1] - a[1]) * u] };
+  };
+  /** The points of the line from distance d0 to d1 (d0 <= d1). */
+  const piece = (d0, d1) => {
+    const s = at(d0);
+    const e = at(d1);
+    const out = [s.p];
+    for (let i = s.i; i < e.i; i++) out.push(points[i]);
+    out.push(e.p);
+    return out;
+  };
+  const ranges = lifted
+    .filter((r) => Array.isArray(r) && Number.isFinite(r[0]) && Number.isFinite(r[1]))
+    .map(([a, b]) => [Math.max(0, Math.min(a, b) * k), Math.min(drawn, Math.max(a, b) * k)])
+    .filter(([a, b]) => b > a)
+    .sort((p, q) => p[0] - q[0]);
+  const worked = [];
+  const lift = [];
+  let from = 0;
+  for (const [a, b] of ranges) {
+    if (b <= from) continue; // inside the stretch before
+    const start = Math.max(a, from);
+    if (start > from) worked.push(piece(from, start));
+    lift.push(piece(start, b));
+    from = b;
+  }
+  if (from < drawn) worked.push(piece(from, drawn));
+  return { worked, lifted: lift };
 }
 
 /** A point inside a polygon to put its label on: the centroid if inside, else the middle of the

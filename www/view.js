@@ -12,6 +12,9 @@ export const THEME_VARS = {
   boundary: ["--boundary", "#161616"],
   obstacleFill: ["--obstacle-fill", "#6f5641"],
   obstacleStroke: ["--obstacle-stroke", "#3b2a1b"],
+  group: ["--obstacle-group", "#3b2a1b"],
+  classFill: ["--class-fill", "#3b2a1b"],
+  classText: ["--class-text", "#ffffff"],
   prohibited: ["--prohibited", "#c8341c"],
   prohibitedFill: ["--prohibited-fill", "rgba(200, 52, 28, 0.10)"],
   blockStroke: ["--block-stroke", "#a3ab99"],
@@ -39,6 +42,7 @@ const BLOCK_KEYS = ["block1", "block2", "block3", "block4", "block5", "block6"];
 const FONT = 'system-ui, -apple-system, "Segoe UI", Roboto, "Helvetica Neue", Arial, sans-serif';
 const FIT_PADDING = 28; // CSS px around the field when fitting
 const MAX_SCALE = 200; // px per metre
+const BADGE_RADIUS = 14; // CSS px: the warning badges' pip (notes.js, style.css .pip) and a margin
 
 /** Reads the theme colours from CSS custom properties of `el`. */
 export function readTheme(el = document.documentElement) {
@@ -59,6 +63,7 @@ export class PlanView {
     this.field = null; // fieldScene()
     this.plan = null; // planScene()
     this.marker = null; // [x, y] in metres: the place an error points at
+    this.keepClear = []; // [x, y] in metres: where badges lie over the map (labels keep clear)
     this.highlights = []; // [{ paths: [{ points, closed }], kind: "error" | "warning" }] in metres
     this.extraBounds = null; // [x0, y0, x1, y1]: more to fit than the field, e.g. an error's place
     this.machineWidth = 6; // metres, to scale line widths when zoomed far out
@@ -75,6 +80,9 @@ export class PlanView {
     this.hatch = null;
     this.onViewChange = null;
     this.onDraw = null; // called after every frame, to move what lies over the canvas
+    // What the last frame drew, for tests and debugging: the obstacle class labels in view
+    // ({ text, index, x, y } in CSS px of the canvas), and the lifted stretches of swaths.
+    this.drawn = { classLabels: [], liftedStretches: 0 };
 
     this.bindPointers();
     new ResizeObserver(() => this.resize()).observe(canvas);
@@ -100,10 +108,12 @@ export class PlanView {
     else this.draw();
   }
 
-  /** Shows a plan (planScene) over the field, or none; `marker` marks a point (metres). */
-  setPlan(plan, { machineWidth, marker = null } = {}) {
+  /** Shows a plan (planScene) over the field, or none; `marker` marks a point (metres);
+   * `keepClear` lists points (metres) where badges lie over the map, for labels to avoid. */
+  setPlan(plan, { machineWidth, marker = null, keepClear = [] } = {}) {
     this.plan = plan;
     this.marker = marker;
+    this.keepClear = keepClear.filter(Boolean);
     if (Number.isFinite(machineWidth) && machineWidth > 0) this.machineWidth = machineWidth;
     this.draw();
   }
@@ -308,6 +318,7 @@ export class PlanView {
     ctx.setTransform(this.dpr, 0, 0, this.dpr, 0, 0);
     ctx.lineJoin = "round";
     ctx.lineCap = "round";
+    this.drawn = { classLabels: [], liftedStretches: 0 };
 
     const field = this.field;
     const plan = this.plan;
@@ -328,6 +339,7 @@ export class PlanView {
         ctx.stroke();
       }
     }
+    if (plan) this.drawGroups(plan.groups ?? []);
     if (field?.boundary) {
       this.polygonPath(field.boundary);
       ctx.lineWidth = 2.5;
@@ -390,6 +402,25 @@ export class PlanView {
     }
   }
 
+  /** The convex hulls class-C obstacles were merged into: a dashed outline on a light halo. */
+  drawGroups(groups) {
+    const { ctx, theme: t } = this;
+    for (const group of groups) {
+      this.polygonPath(group.rings);
+      ctx.setLineDash([]);
+      ctx.lineWidth = 4;
+      ctx.strokeStyle = t.labelFill;
+      ctx.globalAlpha = 0.7;
+      ctx.stroke();
+      ctx.globalAlpha = 1;
+      ctx.setLineDash([7, 5]);
+      ctx.lineWidth = 2;
+      ctx.strokeStyle = t.group;
+      ctx.stroke();
+      ctx.setLineDash([]);
+    }
+  }
+
   drawProhibited(regions) {
     const { ctx, theme: t } = this;
     if (!regions.length) return;
@@ -435,25 +466,78 @@ export class PlanView {
   drawPaths(plan) {
     const { ctx, theme: t } = this;
     const lw = this.pathWidth();
-    const stroke = (segments, color, width, dash = []) => {
-      if (!segments.length) return;
+    const stroke = (lines, color, width, dash = []) => {
+      if (!lines.length) return;
       ctx.beginPath();
-      for (const seg of segments) this.linePath(seg.points);
+      for (const line of lines) {
+        this.linePath(line.points ?? line);
+        if (line.closed) ctx.closePath();
+      }
       ctx.setLineDash(dash);
       ctx.lineWidth = width;
       ctx.strokeStyle = color;
       ctx.stroke();
       ctx.setLineDash([]);
     };
-    stroke(plan.paths.headland, t.headland, lw);
-    stroke(plan.paths.swath, t.swath, lw);
+    // A headland pass is a closed loop, or (along only the edges that need it) an open line.
+    const headland = plan.paths.headland.map((seg) => ({ points: seg.points, closed: seg.props.closed === true }));
+    stroke(headland, t.headland, lw);
+    // Swaths: where the implement is lifted, a gap with a thin dotted line and a tick at each end.
+    const worked = plan.paths.swath.flatMap((seg) => seg.worked ?? [seg.points]);
+    stroke(worked, t.swath, lw);
+    this.drawLifted(plan.paths.swath, t.swath, lw);
     stroke(plan.paths.turn, t.turn, lw * 0.9);
     ctx.lineCap = "butt";
     stroke(plan.paths.connection, t.connection, lw + 0.5, [8, 5]);
     ctx.lineCap = "round";
     this.drawArrows(plan.paths.swath, t.swath, lw);
     this.drawEnds(plan);
-    this.drawBlockLabels(plan.blocks);
+    const blockLabels = this.drawBlockLabels(plan.blocks);
+    this.drawClassLabels(plan.obstacles ?? [], blockLabels);
+  }
+
+  /** The stretches of swaths where the implement is lifted over a class-A obstacle. */
+  drawLifted(swaths, color, lw) {
+    const { ctx } = this;
+    const stretches = swaths.flatMap((seg) => seg.lifted ?? []);
+    this.drawn.liftedStretches = stretches.length;
+    if (!stretches.length) return;
+    const tick = Math.max(4, lw * 2.5);
+    ctx.beginPath();
+    for (const pts of stretches) this.linePath(pts);
+    ctx.setLineDash([Math.max(1.5, lw * 0.6), Math.max(3, lw * 1.6)]);
+    ctx.lineWidth = Math.max(1, lw * 0.6);
+    ctx.strokeStyle = color;
+    ctx.lineCap = "butt";
+    ctx.stroke();
+    ctx.setLineDash([]);
+    // Where the implement is raised and lowered again: a short bar across the swath.
+    ctx.beginPath();
+    for (const pts of stretches) {
+      const a = this.toScreen(pts[0]);
+      const b = this.toScreen(pts[pts.length - 1]);
+      const len = Math.hypot(b[0] - a[0], b[1] - a[1]);
+      const dir = len > 1e-6 ? [(b[0] - a[0]) / len, (b[1] - a[1]) / len] : this.directionOf(pts);
+      const n = [-dir[1] * tick, dir[0] * tick];
+      for (const [x, y] of [a, b]) {
+        ctx.moveTo(x - n[0], y - n[1]);
+        ctx.lineTo(x + n[0], y + n[1]);
+      }
+    }
+    ctx.lineWidth = Math.max(1.25, lw * 0.8);
+    ctx.stroke();
+    ctx.lineCap = "round";
+  }
+
+  /** Unit direction (screen) of a line from its first to its last distinct point, or east. */
+  directionOf(pts) {
+    const a = this.toScreen(pts[0]);
+    for (let i = pts.length - 1; i > 0; i--) {
+      const b = this.toScreen(pts[i]);
+      const len = Math.hypot(b[0] - a[0], b[1] - a[1]);
+      if (len > 1e-6) return [(b[0] - a[0]) / len, (b[1] - a[1]) / len];
+    }
+    return [1, 0];
   }
 
   /** Chevrons in the middle of each swath, pointing the way it is driven, when there is room. */
@@ -516,6 +600,7 @@ export class PlanView {
     ctx.textAlign = "center";
     ctx.textBaseline = "middle";
     const sorted = [...blocks].sort((a, b) => (a.order ?? 0) - (b.order ?? 0));
+    const boxes = [];
     for (const block of sorted) {
       if (block.order == null) continue;
       const [x, y] = this.toScreen(block.label);
@@ -524,6 +609,7 @@ export class PlanView {
       placed.push([x, y]);
       const text = String(block.order + 1);
       const w = Math.max(2 * r, ctx.measureText(text).width + 10);
+      boxes.push({ x0: x - w / 2, y0: y - r, x1: x + w / 2, y1: y + r });
       ctx.beginPath();
       ctx.roundRect(x - w / 2, y - r, w, 2 * r, r);
       ctx.fillStyle = t.labelFill;
@@ -533,6 +619,86 @@ export class PlanView {
       ctx.stroke();
       ctx.fillStyle = t.label;
       ctx.fillText(text, x, y + 0.5);
+    }
+    return boxes;
+  }
+
+  /**
+   * The class of each obstacle (A-D) in a small dark tag: on the obstacle when it is large
+   * enough on screen, else beside it (below first: a warning badge sits on its top edge), where
+   * it covers no other tag, block label or badge (`keepClear`). `avoid`: boxes already taken,
+   * in CSS px.
+   */
+  drawClassLabels(obstacles, avoid = []) {
+    const { ctx, theme: t } = this;
+    const h = 16;
+    ctx.font = `800 11px ${FONT}`;
+    ctx.textAlign = "center";
+    ctx.textBaseline = "middle";
+    const badge = BADGE_RADIUS;
+    const taken = [
+      ...avoid,
+      ...this.keepClear.map((p) => {
+        const [x, y] = this.toScreen(p);
+        return { x0: x - badge, y0: y - badge, x1: x + badge, y1: y + badge };
+      }),
+    ];
+    // How much of box b lies on boxes already taken (2 px apart at least), in px².
+    const overlap = (b) =>
+      taken.reduce(
+        (sum, o) =>
+          sum +
+          Math.max(0, Math.min(b.x1, o.x1 + 2) - Math.max(b.x0, o.x0 - 2)) *
+            Math.max(0, Math.min(b.y1, o.y1 + 2) - Math.max(b.y0, o.y0 - 2)),
+        0,
+      );
+    for (const o of obstacles) {
+      if (!o.class) continue;
+      const text = String(o.class);
+      const w = Math.max(h, ctx.measureText(text).width + 8);
+      let [x0, y0, x1, y1] = [Infinity, Infinity, -Infinity, -Infinity];
+      for (const p of o.rings[0]) {
+        const [x, y] = this.toScreen(p);
+        x0 = Math.min(x0, x);
+        y0 = Math.min(y0, y);
+        x1 = Math.max(x1, x);
+        y1 = Math.max(y1, y);
+      }
+      if (x1 < -w || y1 < -h || x0 > this.cssW + w || y0 > this.cssH + h) continue;
+      const mx = (x0 + x1) / 2;
+      const my = (y0 + y1) / 2;
+      const candidates = [];
+      if (x1 - x0 >= w + 8 && y1 - y0 >= h + 8) candidates.push(this.toScreen(o.label));
+      // Beside it, close, then a little further out (past a badge on it).
+      for (const gap of [3, badge + 4]) {
+        candidates.push(
+          [mx, y1 + gap + h / 2],
+          [x1 + gap + w / 2, my],
+          [x0 - gap - w / 2, my],
+          [mx, y0 - gap - h / 2],
+          [x1 + gap + w / 2, y1 + gap + h / 2],
+          [x0 - gap - w / 2, y1 + gap + h / 2],
+        );
+      }
+      const box = ([x, y]) => ({ x0: x - w / 2, y0: y - h / 2, x1: x + w / 2, y1: y + h / 2 });
+      let best = null;
+      for (const c of candidates) {
+        const cost = overlap(box(c));
+        if (!best || cost < best.cost) best = { c, cost };
+        if (cost === 0) break;
+      }
+      const [x, y] = best.c;
+      taken.push(box([x, y]));
+      ctx.beginPath();
+      ctx.roundRect(x - w / 2, y - h / 2, w, h, 4);
+      ctx.fillStyle = t.classFill;
+      ctx.fill();
+      ctx.lineWidth = 1.5;
+      ctx.strokeStyle = t.labelFill;
+      ctx.stroke();
+      ctx.fillStyle = t.classText;
+      ctx.fillText(text, x, y + 0.5);
+      if (x >= 0 && y >= 0 && x <= this.cssW && y <= this.cssH) this.drawn.classLabels.push({ text, index: o.index, x, y });
     }
   }
 

@@ -16,7 +16,7 @@ pub use crate::geometry::BearingRange;
 pub use projection::{Frame, TransverseMercator};
 
 use crate::error::{PlanError, Warning};
-use geo::{Area, Polygon};
+use geo::{Area, Coord, Polygon};
 use serde::{Deserialize, Serialize};
 
 /// The coordinates a field comes in.
@@ -36,6 +36,9 @@ pub struct Field {
     /// The outer boundary: exterior ring counter-clockwise, no interior rings (holes of the input
     /// boundary are [`obstacles`](Self::obstacles)).
     pub boundary: Polygon,
+    /// The boundary's outer ring as drawn (before repair and simplification), in local metres:
+    /// options that name edges of the boundary (`edgePasses`) count its edges.
+    pub drawn_boundary: Vec<Coord>,
     /// Areas inside the field the machine cannot enter.
     pub obstacles: Vec<Obstacle>,
     /// Areas where some driving directions are forbidden.

@@ -189,8 +189,13 @@ pub fn field_from_input(
     }
     let obstacles = merge_overlapping(obstacles, &mut warnings);
 
+    let drawn_boundary = boundary_in.rings[0]
+        .iter()
+        .map(|&q| frame.to_local(q))
+        .collect();
     let field = Field {
         boundary,
+        drawn_boundary,
         obstacles,
         prohibited,
         name: boundary_in.name.clone(),

@@ -1,0 +1,609 @@
+//! Headlands: the passes driven around the field boundary and around obstacles, where the
+//! machine turns at the ends of the swaths, and the inner field they leave for the swaths.
+//!
+//! The passes are measured from the *region*: the field less the obstacles that get headlands
+//! (classes B, C and D, see [`crate::obstacles`]). Pass `k` (1 = outermost) of width `w` has its
+//! centre line `(k - 1/2)·w` inside the region's boundary, so around an obstacle it runs
+//! `(k - 1/2)·w` outside it; the inner field starts `h·w` inside (Zhou et al. 2.2.1, 2.2.2).
+//!
+//! Each pass is made drivable: the set of points at least `(k - 1/2)·w` inside is *opened* by a
+//! disc of the turning radius ([`offset::open`]), which rounds every convex corner sharper than
+//! the turning radius allows to an arc of that radius and cuts necks too narrow to turn in. The
+//! crop this leaves at the corners is measured ([`Headlands::uncovered_area_m2`]). An opening
+//! never moves a pass outwards, so passes stay `w` or more apart and never cross each other, the
+//! boundary or an obstacle. At concave corners (and round obstacles) the passes are arcs of
+//! radius `(k - 1/2)·w` around the corner; where that is less than the turning radius the
+//! machine needs a manoeuvre there, which the turn stage plans.
+//!
+//! Where a narrow neck closes up an offset, the pass splits into several closed parts; passes
+//! that find no room vanish. Along edges without headland (only-where-needed mode, or edges the
+//! user set to 0 passes, see [`edges`]) the passes are open lines that end where the swaths
+//! along those edges begin.
+
+pub mod edges;
+pub mod offset;
+
+pub use edges::{EdgePasses, HeadlandMode};
+
+use crate::error::{ErrorCode, PlanError};
+use crate::field::Field;
+use edges::point_segment_distance;
+use geo::algorithm::bool_ops::FillRule;
+use geo::{Area, BooleanOps, Coord, Euclidean, Length, LineString, MultiPolygon, Polygon};
+use offset::{drop_slivers, inset, line_band, open, outset, outset_fine};
+use serde::{Deserialize, Serialize};
+
+/// When the headland passes are worked.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum HeadlandOrder {
+    /// Before the swaths, from the outermost pass in: the machine opens up the field edge first,
+    /// as in harvesting (Zhou et al. 2.1).
+    First,
+    /// After the swaths, from the innermost pass out, finishing at the field edge, as in seeding:
+    /// the turns on the headland are worked over last.
+    #[default]
+    Last,
+}
+
+/// What a headland pass runs around.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum PassAround {
+    /// The field boundary (and obstacles merged into it).
+    Field,
+    /// An obstacle (or a group of obstacles) inside the field.
+    Obstacle,
+}
+
+impl PassAround {
+    /// The name in the plan output.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            PassAround::Field => "field",
+            PassAround::Obstacle => "obstacle",
+        }
+    }
+}
+
+/// One headland pass: a closed path around the field, an obstacle or one part of either at a
+/// constant distance from it; or, where some edges have no headland, an open line along the
+/// edges that have one.
+#[derive(Debug, Clone, PartialEq)]
+pub struct HeadlandPass {
+    /// Which pass this is, counted from the boundary (or obstacle) outwards: 1 is the one
+    /// nearest to it.
+    pub index: usize,
+    /// Its centre line; a closed pass repeats its first point at the end and runs
+    /// counter-clockwise round the field (clockwise round an obstacle).
+    pub line: LineString,
+    /// Whether the pass is a closed path.
+    pub closed: bool,
+    /// What it runs around.
+    pub around: PassAround,
+}
+
+impl HeadlandPass {
+    /// Length of the pass, metres.
+    pub fn length(&self) -> f64 {
+        Euclidean.length(&self.line)
+    }
+}
+
+/// The headland passes of a field and the inner field they leave.
+#[derive(Debug, Clone)]
+pub struct Headlands {
+    /// The passes, nearest to the boundary first; a pass that splits at a neck gives several
+    /// entries with the same index.
+    pub passes: Vec<HeadlandPass>,
+    /// The inner field: where the swaths go. Possibly several parts.
+    pub inner: MultiPolygon,
+    /// The field less the obstacles that have headlands: what the passes are measured from.
+    pub region: MultiPolygon,
+    /// Passes along each edge of the field boundary's outer ring (edge `i` from point `i`).
+    pub edge_passes: Vec<u32>,
+    /// Area between the region's boundary and the inner field, square metres.
+    pub area_m2: f64,
+    /// Area of the headland no pass covers, square metres: corners rounded to the turning
+    /// radius, and necks too narrow to turn in. Estimated as the headland area less the width
+    /// times the length of the passes.
+    pub uncovered_area_m2: f64,
+}
+
+/// The settings of the headland stage.
+#[derive(Debug, Clone, Copy)]
+pub struct HeadlandSettings<'a> {
+    /// Working width, metres: the width of a pass.
+    pub width: f64,
+    /// Turning radius, metres: passes are rounded to it at convex corners.
+    pub turn_radius: f64,
+    /// Passes around each obstacle that has a headland.
+    pub obstacle_passes: u32,
+    /// Passes along each edge of the boundary's outer ring (edge `i` from point `i`).
+    pub edge_passes: &'a [u32],
+}
+
+/// Cuts `passes` headland passes of `width` all around the field and its obstacles, with sharp
+/// corners (turning radius 0): Fields2Cover's constant-width headland.
+///
+/// ```
+/// use furrow::field::Field;
+/// use furrow::headland::constant_width;
+///
+/// // A rectangle of about 333 m by 112 m.
+/// let text = r#"{"type": "Polygon", "coordinates": [[[24.05, 60.25], [24.056, 60.25],
+///     [24.056, 60.251], [24.05, 60.251], [24.05, 60.25]]]}"#;
+/// let (field, _) = Field::from_geojson_str(text)?;
+/// let headlands = constant_width(&field, 6.0, 2)?;
+/// assert_eq!(headlands.passes.len(), 2);
+/// // The headland is a 12 m wide band around the field.
+/// let perimeter = 2.0 * (333.0 + 111.5);
+/// assert!((headlands.area_m2 / (12.0 * perimeter) - 1.0).abs() < 0.06);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn constant_width(field: &Field, width: f64, passes: u32) -> Result<Headlands, PlanError> {
+    let holes: Vec<Polygon> = field.obstacles.iter().map(|o| o.polygon.clone()).collect();
+    let edges = vec![passes; field.boundary.exterior().0.len().saturating_sub(1)];
+    build(
+        &field.boundary,
+        &holes,
+        &HeadlandSettings {
+            width,
+            turn_radius: 0.0,
+            obstacle_passes: passes,
+            edge_passes: &edges,
+        },
+    )
+    .map_err(|e| e.at_feature(field.feature))
+}
+
+/// Builds the headland passes and the inner field of a boundary with holes (the obstacles that
+/// get headlands).
+///
+/// ```
+/// use furrow::headland::{build, HeadlandSettings};
+/// use geo::{polygon, Area};
+///
+/// // A 200 x 100 m field with headland along its short (east and west) edges only.
+/// let field = polygon![(x: 0., y: 0.), (x: 200., y: 0.), (x: 200., y: 100.), (x: 0., y: 100.)];
+/// let settings = HeadlandSettings { width: 6.0, turn_radius: 8.0, obstacle_passes: 2, edge_passes: &[0, 2, 0, 2] };
+/// let h = build(&field, &[], &settings)?;
+/// assert!((h.inner.unsigned_area() - 176.0 * 100.0).abs() < 1e-6);
+/// assert_eq!(h.passes.len(), 4); // two open passes at each end
+/// assert!(h.passes.iter().all(|p| !p.closed));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn build(
+    boundary: &Polygon,
+    holes: &[Polygon],
+    settings: &HeadlandSettings,
+) -> Result<Headlands, PlanError> {
+    let w = settings.width;
+    let h = settings.obstacle_passes;
+    let region = if holes.is_empty() {
+        MultiPolygon::new(vec![boundary.clone()])
+    } else {
+        drop_slivers(boundary.difference(&MultiPolygon::new(holes.to_vec())))
+    };
+    let ring = &boundary.exterior().0;
+    let edge_count = ring.len().saturating_sub(1);
+    let edge_passes: Vec<u32> = (0..edge_count)
+        .map(|i| settings.edge_passes.get(i).copied().unwrap_or(h))
+        .collect();
+    let first = edge_passes.first().copied().unwrap_or(h);
+    let uniform = edge_passes.iter().all(|&n| n == first) && (holes.is_empty() || first == h);
+    let most = edge_passes
+        .iter()
+        .copied()
+        .chain((!holes.is_empty()).then_some(h))
+        .max()
+        .unwrap_or(0);
+
+    let mut passes = Vec::new();
+    for k in 1..=most {
+        let d = (k as f64 - 0.5) * w;
+        let constraints = if uniform {
+            Vec::new()
+        } else {
+            constraints(ring, holes, &edge_passes, h, |n| {
+                if n >= k {
+                    (d, true)
+                } else {
+                    ((n as f64 + 0.5) * w, false)
+                }
+            })
+        };
+        let drivable = if uniform {
+            // The opening of the inset by d is the outset of the inset by d + r.
+            outset(
+                &inset(&region, d + settings.turn_radius),
+                settings.turn_radius,
+            )
+        } else {
+            open(&keep_clear(&region, &constraints), settings.turn_radius)
+        };
+        for polygon in &drivable.0 {
+            let rings = std::iter::once((polygon.exterior(), PassAround::Field)).chain(
+                polygon
+                    .interiors()
+                    .iter()
+                    .map(|r| (r, PassAround::Obstacle)),
+            );
+            for (r, around) in rings {
+                // Slivers that boolean operations leave are not passes.
+                let r = without_crumbs(r);
+                if r.0.len() < 4
+                    || Polygon::new(r.clone(), vec![]).unsigned_area() < offset::MIN_PART_AREA_M2
+                {
+                    continue;
+                }
+                if uniform {
+                    passes.push(HeadlandPass {
+                        index: k as usize,
+                        line: r,
+                        closed: true,
+                        around,
+                    });
+                } else {
+                    for (line, closed) in pass_lines(&r, &constraints, w / 2.0) {
+                        passes.push(HeadlandPass {
+                            index: k as usize,
+                            line,
+                            closed,
+                            around,
+                        });
+                    }
+                }
+            }
+        }
+    }
+
+    let inner = if uniform {
+        inset(&region, first as f64 * w)
+    } else {
+        let cs = constraints(ring, holes, &edge_passes, h, |n| (n as f64 * w, n > 0));
+        let blocking: Vec<Constraint> = cs.into_iter().filter(|c| c.high).collect();
+        keep_clear(&region, &blocking)
+    };
+    if inner.0.is_empty() {
+        return Err(PlanError::new(
+            ErrorCode::HeadlandConsumesField,
+            format!(
+                "{most} headland passes of {w} m take up the whole field; use fewer passes or a narrower width"
+            ),
+        ));
+    }
+    let inner_area = inner.unsigned_area();
+    let area_m2 = (region.unsigned_area() - inner_area).max(0.0);
+    // A pass of length L covers w·L of crop (the tube formula: exact where the strip along it
+    // does not overlap itself, i.e. where it curves no tighter than w/2, which the rounding to
+    // the turning radius and the arcs of at least w/2 at concave corners ensure).
+    let worked: f64 = passes.iter().map(|p| p.length() * w).sum();
+    let uncovered_area_m2 = (area_m2 - worked).max(0.0);
+    Ok(Headlands {
+        passes,
+        inner,
+        region,
+        edge_passes,
+        area_m2,
+        uncovered_area_m2,
+    })
+}
+
+/// Points closer together than this (metres) are one point of a pass.
+const CRUMB_M: f64 = 1e-3;
+
+/// A ring without the crumbs boolean operations leave: points within [`CRUMB_M`] of the one
+/// before.
+fn without_crumbs(ring: &LineString) -> LineString {
+    let mut out: Vec<Coord> = Vec::with_capacity(ring.0.len());
+    for &p in &ring.0 {
+        if out
+            .last()
+            .is_none_or(|q: &Coord| (p.x - q.x).hypot(p.y - q.y) >= CRUMB_M)
+        {
+            out.push(p);
+        }
+    }
+    // Keep the ring closed on its first point.
+    if let (Some(&first), Some(last)) = (ring.0.first(), out.last_mut()) {
+        *last = first;
+    }
+    LineString::new(out)
+}
+
+/// A stretch of boundary (a run of edges) or an obstacle that passes keep a distance from.
+#[derive(Debug, Clone)]
+struct Constraint {
+    shape: Shape,
+    /// The distance to keep, metres.
+    distance: f64,
+    /// Whether the pass being built runs along it (rather than just keeping clear of it).
+    high: bool,
+}
+
+#[derive(Debug, Clone)]
+enum Shape {
+    Run(LineString),
+    Hole(Polygon),
+}
+
+impl Constraint {
+    /// How much further than its distance a point is from it.
+    fn excess(&self, p: Coord) -> f64 {
+        let d = match &self.shape {
+            Shape::Run(line) => line
+                .0
+                .windows(2)
+                .map(|s| point_segment_distance(p, s[0], s[1]))
+                .fold(f64::INFINITY, f64::min),
+            Shape::Hole(polygon) => polygon
+                .exterior()
+                .0
+                .windows(2)
+                .map(|s| point_segment_distance(p, s[0], s[1]))
+                .fold(f64::INFINITY, f64::min),
+        };
+        d - self.distance
+    }
+
+    fn band(&self) -> MultiPolygon {
+        match &self.shape {
+            Shape::Run(line) => line_band(line, self.distance),
+            Shape::Hole(polygon) => {
+                outset_fine(&MultiPolygon::new(vec![polygon.clone()]), self.distance)
+            }
+        }
+    }
+}
+
+/// The constraints of one pass: runs of boundary edges with equal (distance, high) from `rule`
+/// applied to each edge's pass count, and the holes with `rule` applied to `hole_passes`.
+fn constraints(
+    ring: &[Coord],
+    holes: &[Polygon],
+    edge_passes: &[u32],
+    hole_passes: u32,
+    rule: impl Fn(u32) -> (f64, bool),
+) -> Vec<Constraint> {
+    let mut out = Vec::new();
+    let n = edge_passes.len();
+    if n > 0 && ring.len() == n + 1 {
+        let key = |i: usize| rule(edge_passes[i % n]);
+        // Start at an edge whose key differs from the one before it, so that no run wraps.
+        let start = (0..n).find(|&i| key(i) != key((i + n - 1) % n));
+        match start {
+            None => {
+                let (distance, high) = key(0);
+                out.push(Constraint {
+                    shape: Shape::Run(LineString::new(ring.to_vec())),
+                    distance,
+                    high,
+                });
+            }
+            Some(s) => {
+                let mut i = s;
+                while i < s + n {
+                    let k = key(i);
+                    let mut j = i + 1;
+                    while j < s + n && key(j) == k {
+                        j += 1;
+                    }
+                    let points: Vec<Coord> = (i..=j).map(|v| ring[v % n]).collect();
+                    out.push(Constraint {
+                        shape: Shape::Run(LineString::new(points)),
+                        distance: k.0,
+                        high: k.1,
+                    });
+                    i = j;
+                }
+            }
+        }
+    }
+    let (distance, high) = rule(hole_passes);
+    for hole in holes {
+        out.push(Constraint {
+            shape: Shape::Hole(hole.clone()),
+            distance,
+            high,
+        });
+    }
+    out
+}
+
+/// The part of `region` farther from every constraint than its distance.
+fn keep_clear(region: &MultiPolygon, constraints: &[Constraint]) -> MultiPolygon {
+    let bands: Vec<Polygon> = constraints
+        .iter()
+        .filter(|c| c.distance > 0.0)
+        .flat_map(|c| c.band().0)
+        .collect();
+    if bands.is_empty() {
+        return region.clone();
+    }
+    drop_slivers(region.difference_with_fill_rule(&MultiPolygon::new(bands), FillRule::NonZero))
+}
+
+/// Tolerance (metres) within which two constraints bind equally.
+const BINDING_TOLERANCE_M: f64 = 1e-6;
+
+/// The pieces of a ring of the room left for a pass that run along the constraints the pass
+/// follows: the whole ring if it is all such, else open lines. A stretch of the ring is on the
+/// pass where a followed constraint is the nearest (in excess of its distance) at both of its
+/// ends and its middle; the middle matters at corners, where the two ends of a stretch along an
+/// edge without headland touch the edges beside it. Pieces shorter than `min_length` are
+/// dropped.
+fn pass_lines(
+    ring: &LineString,
+    constraints: &[Constraint],
+    min_length: f64,
+) -> Vec<(LineString, bool)> {
+    let pts = &ring.0;
+    let m = pts.len().saturating_sub(1);
+    if m < 2 {
+        return Vec::new();
+    }
+    let follows = |p: Coord| {
+        let mut best = (f64::INFINITY, false);
+        for c in constraints {
+            let e = c.excess(p);
+            // Prefer the constraint being followed where two bind equally.
+            if e < best.0 - BINDING_TOLERANCE_M
+                || (e <= best.0 + BINDING_TOLERANCE_M && c.high && !best.1)
+            {
+                best = (e.min(best.0), c.high);
+            }
+        }
+        best.1
+    };
+    let at_vertex: Vec<bool> = pts[..m].iter().map(|&p| follows(p)).collect();
+    // Segment i runs from point i to point i + 1.
+    let on_pass: Vec<bool> = (0..m)
+        .map(|i| {
+            let (a, b) = (pts[i], pts[i + 1]);
+            at_vertex[i]
+                && at_vertex[(i + 1) % m]
+                && follows(Coord {
+                    x: (a.x + b.x) / 2.0,
+                    y: (a.y + b.y) / 2.0,
+                })
+        })
+        .collect();
+    if on_pass.iter().all(|&b| b) {
+        return vec![(ring.clone(), true)];
+    }
+    let Some(start) = on_pass.iter().position(|&b| !b) else {
+        return Vec::new();
+    };
+    let mut out = Vec::new();
+    let mut current: Vec<Coord> = Vec::new();
+    for step in 1..=m {
+        let i = (start + step) % m;
+        if on_pass[i] {
+            if current.is_empty() {
+                current.push(pts[i]);
+            }
+            current.push(pts[i + 1]);
+        } else if !current.is_empty() {
+            out.push(std::mem::take(&mut current));
+        }
+    }
+    if !current.is_empty() {
+        out.push(current);
+    }
+    out.into_iter()
+        .map(LineString::new)
+        .filter(|l| Euclidean.length(l) >= min_length)
+        .map(|l| (l, false))
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::field::{Frame, Obstacle};
+    use geo::{coord, polygon, Distance, Euclidean, Point};
+
+    fn field(boundary: Polygon, obstacles: Vec<Polygon>) -> Field {
+        Field {
+            boundary,
+            drawn_boundary: vec![],
+            obstacles: obstacles
+                .into_iter()
+                .map(|polygon| Obstacle {
+                    polygon,
+                    feature: 1,
+                    name: None,
+                })
+                .collect(),
+            prohibited: vec![],
+            name: None,
+            feature: 0,
+            frame: Frame::Metric,
+        }
+    }
+
+    fn rectangle(w: f64, h: f64) -> Polygon {
+        polygon![(x: 0., y: 0.), (x: w, y: 0.), (x: w, y: h), (x: 0., y: h)]
+    }
+
+    #[test]
+    fn pass_centre_lines_are_at_half_widths() {
+        let f = field(rectangle(200.0, 100.0), vec![]);
+        let h = constant_width(&f, 6.0, 3).unwrap();
+        assert_eq!(h.passes.len(), 3);
+        let boundary = f.boundary.exterior();
+        for pass in &h.passes {
+            let expected = (pass.index as f64 - 0.5) * 6.0;
+            for &c in &pass.line.0 {
+                let d = Euclidean.distance(&Point(c), boundary);
+                assert!((d - expected).abs() < 1e-6, "pass {} at {d}", pass.index);
+            }
+        }
+        // Inner field: 200 - 36 by 100 - 36.
+        assert!((h.inner.unsigned_area() - 164.0 * 64.0).abs() < 1e-6);
+        assert!((h.area_m2 - (200.0 * 100.0 - 164.0 * 64.0)).abs() < 1e-6);
+    }
+
+    #[test]
+    fn no_passes_leaves_the_whole_field() {
+        let f = field(rectangle(50.0, 50.0), vec![]);
+        let h = constant_width(&f, 6.0, 0).unwrap();
+        assert!(h.passes.is_empty());
+        assert_eq!(h.area_m2, 0.0);
+        assert!((h.inner.unsigned_area() - 2500.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn obstacles_are_cut_out_of_the_inner_field() {
+        let obstacle =
+            polygon![(x: 40., y: 40.), (x: 60., y: 40.), (x: 60., y: 60.), (x: 40., y: 60.)];
+        let f = field(rectangle(100.0, 100.0), vec![obstacle]);
+        let h = constant_width(&f, 5.0, 1).unwrap();
+        // The obstacle gets its pass too: the inner field keeps 5 m from it, round its corners.
+        let around = 400.0 + 4.0 * 20.0 * 5.0 + std::f64::consts::PI * 25.0;
+        assert!((h.inner.unsigned_area() - (90.0 * 90.0 - around)).abs() < 0.2);
+        assert_eq!(h.passes.len(), 2);
+        assert_eq!(
+            h.passes
+                .iter()
+                .filter(|p| p.around == PassAround::Obstacle)
+                .count(),
+            1
+        );
+    }
+
+    #[test]
+    fn too_many_passes_consume_the_field() {
+        let f = field(rectangle(30.0, 20.0), vec![]);
+        let e = constant_width(&f, 6.0, 2).unwrap_err();
+        assert_eq!(e.code, ErrorCode::HeadlandConsumesField);
+    }
+
+    #[test]
+    fn a_narrow_neck_splits_the_inner_field() {
+        // Two 60 m squares joined by a 10 m wide neck: 2 passes of 4 m close the neck.
+        let dumbbell = Polygon::new(
+            LineString::from(vec![
+                coord! { x: 0., y: 0. },
+                coord! { x: 60., y: 0. },
+                coord! { x: 60., y: 25. },
+                coord! { x: 80., y: 25. },
+                coord! { x: 80., y: 0. },
+                coord! { x: 140., y: 0. },
+                coord! { x: 140., y: 60. },
+                coord! { x: 80., y: 60. },
+                coord! { x: 80., y: 35. },
+                coord! { x: 60., y: 35. },
+                coord! { x: 60., y: 60. },
+                coord! { x: 0., y: 60. },
+            ]),
+            vec![],
+        );
+        let f = field(dumbbell, vec![]);
+        let h = constant_width(&f, 4.0, 2).unwrap();
+        assert_eq!(h.inner.0.len(), 2);
+        // Pass 1 (2 m in) still goes through the neck; pass 2 (6 m in) does not.
+        assert_eq!(h.passes.iter().filter(|p| p.index == 1).count(), 1);
+        assert_eq!(h.passes.iter().filter(|p| p.index == 2).count(), 2);
+    }
+}
