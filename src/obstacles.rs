@@ -18,8 +18,7 @@
 //! from ([`crate::headland::build`]); A obstacles are not.
 
 use crate::field::Field;
-use crate::geometry::SweepFrame;
-use crate::headland::edges::point_segment_distance;
+use crate::geometry::{point_segment_distance, SweepFrame};
 use crate::headland::offset::drop_slivers;
 use geo::{BooleanOps, ConvexHull, Coord, Distance, Euclidean, MultiPolygon, Polygon};
 use serde::Serialize;

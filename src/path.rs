@@ -6,6 +6,7 @@
 //! machine's turning radius replace the turns in a later version, and connections will run along
 //! the headland passes rather than across the crop.
 
+use crate::geometry::point_segment_distance;
 use crate::headland::HeadlandPass;
 use crate::route::{nearest_on_ring, Route, RouteStep};
 use crate::swath::Swaths;
@@ -172,18 +173,6 @@ fn ring_starting_at(ring: &LineString, at: Option<Coord>) -> LineString {
     out.push(p);
     out.dedup_by(|a, b| (a.x - b.x).hypot(a.y - b.y) < MIN_CONNECTOR_M);
     LineString::new(out)
-}
-
-fn point_segment_distance(p: Coord, a: Coord, b: Coord) -> f64 {
-    let ab = b - a;
-    let len2 = ab.x * ab.x + ab.y * ab.y;
-    let t = if len2 > 0.0 {
-        (((p.x - a.x) * ab.x + (p.y - a.y) * ab.y) / len2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    let q = a + ab * t;
-    (p.x - q.x).hypot(p.y - q.y)
 }
 
 impl Path {

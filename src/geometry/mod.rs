@@ -1,10 +1,12 @@
-//! Small geometric helpers shared by the pipeline stages: compass bearings, and sets of parallel
+//! Small geometric helpers shared by the pipeline stages: compass bearings, point-to-segment distance, and sets of parallel
 //! lines clipped by polygons (the core of swath generation).
 
 pub mod bearing;
 pub mod bearing_range;
+pub mod distance;
 pub mod parallel_lines;
 
 pub use bearing::{bearing_of, deg_to_bearing, swath_direction, unit_vector};
 pub use bearing_range::{forbids_every_direction, BearingRange};
+pub use distance::point_segment_distance;
 pub use parallel_lines::SweepFrame;

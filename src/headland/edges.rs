@@ -6,7 +6,7 @@
 //! the user may set the number of passes of any edge of the boundary as drawn (0 allowed).
 
 use crate::error::{ErrorCode, PlanError};
-use crate::geometry::swath_direction;
+use crate::geometry::{point_segment_distance, swath_direction};
 use geo::{Coord, Polygon};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
@@ -130,19 +130,6 @@ fn nearest_drawn_edge(drawn: &[Coord], edges: usize, p: Coord) -> Option<usize> 
         }
     }
     best.map(|(_, i)| i)
-}
-
-/// Distance from `p` to the segment `a`–`b`.
-pub fn point_segment_distance(p: Coord, a: Coord, b: Coord) -> f64 {
-    let ab = b - a;
-    let len2 = ab.x * ab.x + ab.y * ab.y;
-    let t = if len2 > 0.0 {
-        (((p.x - a.x) * ab.x + (p.y - a.y) * ab.y) / len2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    let q = a + ab * t;
-    (p.x - q.x).hypot(p.y - q.y)
 }
 
 #[cfg(test)]

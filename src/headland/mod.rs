@@ -27,7 +27,7 @@ pub use edges::{EdgePasses, HeadlandMode};
 
 use crate::error::{ErrorCode, PlanError};
 use crate::field::Field;
-use edges::point_segment_distance;
+use crate::geometry::point_segment_distance;
 use geo::algorithm::bool_ops::FillRule;
 use geo::{Area, BooleanOps, Coord, Euclidean, Length, LineString, MultiPolygon, Polygon};
 use offset::{drop_slivers, inset, line_band, open, outset, outset_fine};

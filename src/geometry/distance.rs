@@ -1,0 +1,26 @@
+//! Distance from a point to a segment, the building block of the nearest-edge queries of the
+//! headland and route stages.
+
+use geo::Coord;
+
+/// Distance from `p` to the segment `a`–`b`.
+///
+/// ```
+/// use furrow::geometry::point_segment_distance;
+/// use geo::coord;
+///
+/// let (a, b) = (coord! { x: 0.0, y: 0.0 }, coord! { x: 10.0, y: 0.0 });
+/// assert_eq!(point_segment_distance(coord! { x: 5.0, y: 3.0 }, a, b), 3.0);
+/// assert_eq!(point_segment_distance(coord! { x: 13.0, y: 4.0 }, a, b), 5.0);
+/// ```
+pub fn point_segment_distance(p: Coord, a: Coord, b: Coord) -> f64 {
+    let ab = b - a;
+    let len2 = ab.x * ab.x + ab.y * ab.y;
+    let t = if len2 > 0.0 {
+        (((p.x - a.x) * ab.x + (p.y - a.y) * ab.y) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    let q = a + ab * t;
+    (p.x - q.x).hypot(p.y - q.y)
+}
