@@ -330,19 +330,15 @@ enum Shape {
 impl Constraint {
     /// How much further than its distance a point is from it.
     fn excess(&self, p: Coord) -> f64 {
-        let d = match &self.shape {
-            Shape::Run(line) => line
-                .0
-                .windows(2)
-                .map(|s| point_segment_distance(p, s[0], s[1]))
-                .fold(f64::INFINITY, f64::min),
-            Shape::Hole(polygon) => polygon
-                .exterior()
-                .0
-                .windows(2)
-                .map(|s| point_segment_distance(p, s[0], s[1]))
-                .fold(f64::INFINITY, f64::min),
+        let ring = match &self.shape {
+            Shape::Run(line) => line,
+            Shape::Hole(polygon) => polygon.exterior(),
         };
+        let d = ring
+            .0
+            .windows(2)
+            .map(|s| point_segment_distance(p, s[0], s[1]))
+            .fold(f64::INFINITY, f64::min);
         d - self.distance
     }
 
