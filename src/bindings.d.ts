@@ -34,6 +34,35 @@ export interface EdgePasses {
   passes: number;
 }
 
+/**
+ * How the driving direction is chosen: `"search"`, the direction of lowest cost by `objective`;
+ * `"longest-edge"`, along the longest boundary edge; `"fixed"`, the `bearing` given;
+ * `"reference"`, along `referenceLine` or `referenceEdge`, on its grid.
+ */
+export type DirectionMode = "search" | "longest-edge" | "fixed" | "reference";
+
+/**
+ * How the direction search steps: `"coarse-to-fine"` (Oksanen & Visala: six directions, refine
+ * around the best three until under one degree; about 30 evaluations) or `"brute-force"` (every
+ * direction at `searchStep`).
+ */
+export type SearchMethod = "coarse-to-fine" | "brute-force";
+
+/**
+ * What the direction search minimises: `"time"`, estimated operation time (swaths, turns by the
+ * turn model, and uncovered area); `"swath-count"`; `"swath-length"` (total); `"coverage"` (the
+ * uncovered share); `"overlap"` (area worked twice or over the edge); `"turn-count"`;
+ * `"oksanen"`, Oksanen & Visala's weighted criterion (efficiency 65 %, area 15 %, distance 20 %).
+ */
+export type ObjectiveName =
+  | "time"
+  | "swath-count"
+  | "swath-length"
+  | "coverage"
+  | "overlap"
+  | "turn-count"
+  | "oksanen";
+
 /** Planner options. Every option has a default; see `defaultOptions()`. */
 export interface PlanOptions {
   /** Working width of the implement, metres: swath spacing and headland pass width. Default 6. */
@@ -72,10 +101,37 @@ export interface PlanOptions {
   /** Minimum turning radius of the machine, metres. Default 8. */
   turnRadius?: number;
   /**
+   * How the driving direction is chosen. `null` or absent: `"fixed"` if `bearing` is given,
+   * `"reference"` if `referenceLine` or `referenceEdge` is, else `"search"`.
+   */
+  direction?: DirectionMode | null;
+  /** The direction search. Default `"coarse-to-fine"`. */
+  search?: SearchMethod;
+  /** Step of the brute-force search, degrees (0.01 to 90). Default 1. */
+  searchStep?: number;
+  /** What the direction search minimises. Default `"time"`. */
+  objective?: ObjectiveName;
+  /**
    * Driving direction as a compass bearing in degrees (0 = north, clockwise; a bearing and its
-   * reverse are the same direction). `null` or absent: along the longest boundary edge.
+   * reverse are the same direction). `null` or absent: searched.
    */
   bearing?: number | null;
+  /**
+   * A reference (AB) line: two points in the input's coordinates. Swaths run along it, on a grid
+   * one width apart through it (shifted by `referenceOffset`), so that tracks follow last year's.
+   */
+  referenceLine?: [Position, Position] | null;
+  /** A boundary edge as drawn (edge `i` from point `i` to `i + 1`) to run the swaths along. */
+  referenceEdge?: number | null;
+  /**
+   * Shift of the swath grid from the reference, metres, to the right looking from its first point
+   * to its second. Default 0 for a line (it is a track), half a width for an edge.
+   */
+  referenceOffset?: number | null;
+  /** Speed while working, km/h, for the estimated operation time. Default 8. */
+  workingSpeed?: number;
+  /** Speed while turning, km/h. Default 5. */
+  turningSpeed?: number;
   /**
    * Driving directions that may not be used anywhere, as `[from, to]` compass bearings in degrees
    * (clockwise from `from` to `to`; a range forbids the reverse directions too). Default none.
@@ -160,6 +216,16 @@ export interface PlanFeatureProperties {
    * the swath's first point (as driven), in order. Absent when it is never lifted.
    */
   lifted?: [number, number][];
+  /**
+   * For a swath on a line placed to work a leftover strip narrower than a width: how far (metres)
+   * its strip overlaps its neighbour's. Absent on regular lines, exactly a width apart.
+   */
+  overlap_m?: number;
+  /**
+   * For a swath or block in a prohibited region that forbids the field's direction: the index of
+   * the region (among the input's prohibited regions), whose own direction it follows.
+   */
+  region?: number;
 }
 
 export type Position = [number, number];
@@ -201,8 +267,49 @@ export interface PlanSummary {
   dropped_swath_count: number;
   /** Swath direction, compass degrees in [0, 180). */
   bearing_deg: number;
+  /** How the direction was chosen. */
+  direction: DirectionReport;
+  /** Every objective's value for the plan's swaths, turns by the turn model. */
+  objectives: ObjectiveValues;
+  /**
+   * Estimated operation time, seconds: swaths and headland passes at working speed, turns (by the
+   * turn model) and connections at turning speed.
+   */
+  estimated_time_s: number;
   /** Time the planner took, milliseconds. */
   planning_ms: number;
+}
+
+/** How the direction of a plan was chosen. */
+export interface DirectionReport {
+  mode: DirectionMode;
+  /** The search method, when the direction was searched. */
+  method: SearchMethod | null;
+  /** The objective minimised, by which `cost` is measured. */
+  objective: ObjectiveName;
+  /** Directions evaluated, the field's and its prohibited regions'. */
+  evaluations: number;
+  /** The objective's cost of the plan's swaths (seconds for `"time"`). */
+  cost: number;
+}
+
+/** The objectives' values for a plan's swaths. */
+export interface ObjectiveValues {
+  swath_count: number;
+  /** Total swath length, metres. */
+  swath_length_m: number;
+  /** Share of the inner field covered by the swaths' strips, 0 to 1. */
+  coverage: number;
+  covered_area_m2: number;
+  /** Area worked twice, or over the inner field's edge into the headland, by the strips. */
+  overlap_m2: number;
+  turn_count: number;
+  /** Length of the turns between swaths by the turn model (U-turn, or loop turn under 2 radii). */
+  turning_distance_m: number;
+  /** Swaths at working speed and turns at turning speed, seconds. */
+  time_s: number;
+  /** Oksanen & Visala's weighted score, 0 to 1, higher is better. */
+  oksanen_score: number;
 }
 
 /** The codes of warnings in a plan. */
@@ -220,7 +327,9 @@ export type WarningCode =
   | "ignored_feature"
   | "short_swaths_dropped"
   | "straight_connections"
-  | "implement_lifted";
+  | "implement_lifted"
+  | "region_own_direction"
+  | "region_not_worked";
 
 export interface PlanWarning {
   /** What the warning is about; see the README's warning reference. */

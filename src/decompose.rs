@@ -52,7 +52,22 @@ pub struct Blocks {
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn cluster_swaths(swaths: &Swaths) -> Blocks {
-    let s = &swaths.swaths;
+    let blocks = block_members(&swaths.swaths)
+        .into_iter()
+        .enumerate()
+        .map(|(index, ids)| Block {
+            index,
+            outline: outline(swaths, &ids),
+            bearing: swaths.swaths[ids[0]].bearing,
+            swaths: ids,
+        })
+        .collect();
+    Blocks { blocks }
+}
+
+/// The swaths of each block (indices into `s`, one per line, in line order), without outlines:
+/// what the direction search needs to count turns.
+pub fn block_members(s: &[Swath]) -> Vec<Vec<usize>> {
     // Swaths are ordered by line; find where each line's run starts.
     let mut runs: Vec<(usize, std::ops::Range<usize>)> = Vec::new();
     let mut i = 0;
@@ -97,18 +112,7 @@ pub fn cluster_swaths(swaths: &Swaths) -> Blocks {
             }
         }
     }
-
-    let blocks = members
-        .into_iter()
-        .enumerate()
-        .map(|(index, ids)| Block {
-            index,
-            outline: outline(swaths, &ids),
-            swaths: ids,
-            bearing: swaths.bearing,
-        })
-        .collect();
-    Blocks { blocks }
+    members
 }
 
 /// Whether two swaths on neighbouring lines overlap along the line.
@@ -132,7 +136,7 @@ fn outline(swaths: &Swaths, ids: &[usize]) -> Polygon {
             (s[ids[k - 1]].across + s[ids[k]].across) / 2.0
         }
     };
-    let f = &swaths.frame;
+    let f = &s[ids[0]].frame;
     let mut pts = Vec::with_capacity(4 * n + 1);
     // Up the start side, then back down the end side.
     for (k, &id) in ids.iter().enumerate() {

@@ -1,16 +1,205 @@
 //! The driving direction of the swaths.
 //!
-//! Rules: a bearing the user gives, or the one farmers use, along the longest edge of the field
-//! boundary. The edge is measured on the boundary simplified to half a working width, so that a
+//! Rules: a search over directions for the lowest cost by an [objective](crate::objective)
+//! (brute force at a step, as Fields2Cover; or Oksanen & Visala's coarse-to-fine search, 2.6), a
+//! bearing the user gives, a reference line, or the one farmers use, along the longest edge of
+//! the field boundary. The edge is measured on the boundary simplified to half a working width, so that a
 //! GNSS-recorded boundary with many short noisy edges still has the long straight edge it looks
 //! like. Forbidden bearing ranges (Oksanen & Visala 2.8: along drainage laterals, up an
 //! escarpment) are respected: a fixed bearing in one is refused; the longest-edge rule takes the
 //! longest edge whose direction is allowed.
 
 use crate::error::{ErrorCode, PlanError};
-use crate::field::Field;
-use crate::geometry::{bearing_of, deg_to_bearing, swath_direction, BearingRange};
-use geo::{LineString, Simplify};
+use crate::field::{Field, ProhibitedRegion};
+use crate::geometry::{
+    bearing_of, deg_to_bearing, forbids_every_direction, swath_direction, BearingRange, SweepFrame,
+};
+use crate::headland::edges::drawn_edge_count;
+use crate::objective::{measure, Machine, Objective, SwathStats};
+use crate::prohibited::{forbidding, split};
+use crate::swath::{generate_with, LinePlacement, SwathSettings};
+use geo::{Coord, LineString, MultiPolygon, Simplify};
+use serde::{Deserialize, Serialize};
+use std::f64::consts::PI;
+
+/// How the driving direction of a plan is chosen (the `direction` option).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum DirectionMode {
+    /// The direction of lowest cost by the objective.
+    Search,
+    /// Along the longest boundary edge, as farmers often drive.
+    LongestEdge,
+    /// The `bearing` given.
+    Fixed,
+    /// Along a reference line or boundary edge, on its grid.
+    Reference,
+}
+
+/// How the direction search steps through directions.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum SearchMethod {
+    /// Every direction at a fixed step (Fields2Cover's brute force).
+    BruteForce,
+    /// Six directions 30 degrees apart; keep the best three, try half the step either side of
+    /// each, and repeat until the step is under one degree (Oksanen & Visala 2.6).
+    #[default]
+    CoarseToFine,
+}
+
+/// The direction a search found.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SearchResult {
+    /// The best swath direction, compass radians in `[0, π)`.
+    pub bearing: f64,
+    /// Its cost.
+    pub cost: f64,
+    /// How many directions were evaluated.
+    pub evaluations: usize,
+}
+
+/// Amount (degrees) by which a candidate moved out of a forbidden range clears its end.
+const RANGE_CLEARANCE_DEG: f64 = 1e-3;
+
+/// The allowed swath direction nearest to `bearing` (compass radians): `bearing` itself when no
+/// range forbids it, else just outside the end of a forbidden range. `None` if every direction is
+/// forbidden.
+///
+/// ```
+/// use furrow::direction::nearest_allowed;
+/// use furrow::geometry::BearingRange;
+///
+/// let drains = [BearingRange { from_deg: 20.0, to_deg: 70.0 }];
+/// let b = nearest_allowed(60f64.to_radians(), &drains).unwrap().to_degrees();
+/// assert!((b - 70.0).abs() < 0.01);
+/// assert_eq!(nearest_allowed(2.0, &drains), Some(2.0));
+/// ```
+pub fn nearest_allowed(bearing: f64, forbidden: &[BearingRange]) -> Option<f64> {
+    let b = swath_direction(bearing);
+    if !forbidden.iter().any(|r| r.forbids(b)) {
+        return Some(b);
+    }
+    let mut best: Option<(f64, f64)> = None;
+    for r in forbidden {
+        for end in [
+            r.from_deg - RANGE_CLEARANCE_DEG,
+            r.to_deg + RANGE_CLEARANCE_DEG,
+        ] {
+            let e = swath_direction(end.to_radians());
+            if forbidden.iter().any(|q| q.forbids(e)) {
+                continue;
+            }
+            let d = (e - b).rem_euclid(PI);
+            let d = d.min(PI - d);
+            if best.is_none_or(|(bd, _)| d < bd) {
+                best = Some((d, e));
+            }
+        }
+    }
+    best.map(|(_, e)| e)
+}
+
+/// Searches the swath directions not in `forbidden` for the lowest `cost` (a function of the
+/// swath direction, compass radians). NaN costs count as infinite.
+///
+/// Brute force also tries the directions just outside each forbidden range, where a constrained
+/// optimum often lies; the coarse-to-fine search moves candidates that fall in a range to the
+/// nearest allowed direction.
+///
+/// ```
+/// use furrow::direction::{search_direction, SearchMethod};
+///
+/// // A cost with its minimum at 47.3 degrees.
+/// let cost = |b: f64| (b.to_degrees() - 47.3).abs();
+/// let brute = search_direction(SearchMethod::BruteForce, 1.0, &[], cost)?;
+/// assert_eq!((brute.bearing.to_degrees().round(), brute.evaluations), (47.0, 180));
+/// let fine = search_direction(SearchMethod::CoarseToFine, 1.0, &[], cost)?;
+/// assert!((fine.bearing.to_degrees() - 47.3).abs() < 1.0 && fine.evaluations <= 36);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn search_direction(
+    method: SearchMethod,
+    step_deg: f64,
+    forbidden: &[BearingRange],
+    mut cost: impl FnMut(f64) -> f64,
+) -> Result<SearchResult, PlanError> {
+    let no_direction = || {
+        PlanError::new(
+            ErrorCode::NoAllowedDirection,
+            "the forbidden bearing ranges forbid every driving direction",
+        )
+    };
+    let mut evaluated: Vec<(f64, f64)> = Vec::new();
+    let mut eval = |b: f64, evaluated: &mut Vec<(f64, f64)>| {
+        if evaluated.iter().any(|e| (e.0 - b).abs() < 1e-9) {
+            return;
+        }
+        let c = cost(b);
+        evaluated.push((b, if c.is_nan() { f64::INFINITY } else { c }));
+    };
+    match method {
+        SearchMethod::BruteForce => {
+            let step = step_deg.clamp(1e-3, 180.0);
+            let n = (180.0 / step - 1e-9).ceil() as usize;
+            let allowed = |b: f64| !forbidden.iter().any(|r| r.forbids(b));
+            for k in 0..n {
+                let b = (k as f64 * step).to_radians();
+                if allowed(b) {
+                    eval(b, &mut evaluated);
+                }
+            }
+            for r in forbidden {
+                for end in [
+                    r.from_deg - RANGE_CLEARANCE_DEG,
+                    r.to_deg + RANGE_CLEARANCE_DEG,
+                ] {
+                    let b = swath_direction(end.to_radians());
+                    if allowed(b) {
+                        eval(b, &mut evaluated);
+                    }
+                }
+            }
+        }
+        SearchMethod::CoarseToFine => {
+            let mut step = 30.0f64;
+            for k in 0..6 {
+                let b = (k as f64 * step).to_radians();
+                eval(
+                    nearest_allowed(b, forbidden).ok_or_else(no_direction)?,
+                    &mut evaluated,
+                );
+            }
+            while step >= 1.0 {
+                let mut ranked = evaluated.clone();
+                ranked.sort_by(|a, b| a.1.total_cmp(&b.1));
+                step /= 2.0;
+                for &(b, _) in ranked.iter().take(3) {
+                    for side in [-1.0, 1.0] {
+                        let c = b + side * step.to_radians();
+                        eval(
+                            nearest_allowed(c, forbidden).ok_or_else(no_direction)?,
+                            &mut evaluated,
+                        );
+                    }
+                }
+            }
+        }
+    }
+    // The first of the lowest: ties go to the direction evaluated first.
+    let mut best: Option<(f64, f64)> = None;
+    for &(b, c) in &evaluated {
+        if best.is_none_or(|(_, bc)| c < bc) {
+            best = Some((b, c));
+        }
+    }
+    let (bearing, cost) = best.ok_or_else(no_direction)?;
+    Ok(SearchResult {
+        bearing,
+        cost,
+        evaluations: evaluated.len(),
+    })
+}
 
 /// How the driving direction is chosen.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -108,6 +297,234 @@ fn edges_longest_first(ring: &LineString, tolerance_m: f64) -> Vec<(f64, f64)> {
         .collect();
     edges.sort_by(|a, b| b.0.total_cmp(&a.0));
     edges
+}
+
+/// What the direction search of an area needs besides the area.
+pub struct AreaSearch<'a> {
+    /// Search method.
+    pub method: SearchMethod,
+    /// Step of the brute-force search, degrees.
+    pub step_deg: f64,
+    /// Working width, metres.
+    pub width: f64,
+    /// Swath pieces shorter than this (metres) are dropped.
+    pub min_length: f64,
+    /// The machine, for the objectives.
+    pub machine: Machine,
+    /// What is minimised.
+    pub objective: &'a dyn Objective,
+}
+
+/// The direction of lowest cost for swaths covering `area`, among those `forbidden` allows.
+///
+/// ```
+/// use furrow::direction::{search_area, AreaSearch, SearchMethod};
+/// use furrow::objective::{Machine, OperationTime};
+/// use geo::{polygon, MultiPolygon};
+///
+/// // A 40 m x 300 m strip running north-east: work it lengthwise.
+/// let strip = polygon![(x: 0., y: 0.), (x: 28.3, y: -28.3), (x: 240.4, y: 183.8), (x: 212.1, y: 212.1)];
+/// let search = AreaSearch {
+///     method: SearchMethod::CoarseToFine, step_deg: 1.0, width: 6.0, min_length: 6.0,
+///     machine: Machine { width: 6.0, turn_radius: 6.0, working_speed: 2.0, turning_speed: 1.5 },
+///     objective: &OperationTime,
+/// };
+/// let best = search_area(&MultiPolygon::new(vec![strip]), &[], &search)?;
+/// assert!((best.bearing.to_degrees() - 45.0).abs() < 1.0);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn search_area(
+    area: &MultiPolygon,
+    forbidden: &[BearingRange],
+    search: &AreaSearch,
+) -> Result<SearchResult, PlanError> {
+    let mut error = None;
+    let result = search_direction(
+        search.method,
+        search.step_deg,
+        forbidden,
+        |b| match area_stats(area, b, search) {
+            Ok(s) => search.objective.cost(&s, &search.machine),
+            Err(e) => {
+                error.get_or_insert(e);
+                f64::INFINITY
+            }
+        },
+    )?;
+    match error {
+        Some(e) => Err(e),
+        None => Ok(result),
+    }
+}
+
+/// The measures of the swaths covering `area` at swath direction `bearing`.
+pub fn area_stats(
+    area: &MultiPolygon,
+    bearing: f64,
+    search: &AreaSearch,
+) -> Result<SwathStats, PlanError> {
+    let swaths = generate_with(
+        area,
+        &SwathSettings {
+            bearing,
+            width: search.width,
+            min_length: search.min_length,
+            placement: LinePlacement::FromEdge,
+        },
+    )?;
+    Ok(measure(&swaths.swaths, search.width, area, &search.machine))
+}
+
+/// The parts of a field for one set of prohibited regions cut out: the part worked at the
+/// field's direction, and the measures of the regions' parts at their own best directions.
+struct CutOut {
+    main: MultiPolygon,
+    regions: SwathStats,
+}
+
+/// The direction of lowest cost for the whole field: the swaths of `area` (the inner field) at
+/// each candidate direction, with every prohibited region that forbids the candidate cut out and
+/// worked at its own best direction.
+pub fn search_field(
+    area: &MultiPolygon,
+    regions: &[ProhibitedRegion],
+    global: &[BearingRange],
+    search: &AreaSearch,
+) -> Result<SearchResult, PlanError> {
+    let mut cache: Vec<(Vec<usize>, CutOut)> = Vec::new();
+    let mut region_evaluations = 0;
+    let mut error = None;
+    let result = search_direction(search.method, search.step_deg, global, |b| {
+        let cut = forbidding(regions, b);
+        let found = cache.iter().position(|(k, _)| *k == cut);
+        let index = match found {
+            Some(i) => i,
+            None => {
+                let (main, parts) = split(area, regions, &cut, global);
+                let mut stats = SwathStats::default();
+                for part in parts {
+                    if forbids_every_direction(&part.forbidden) {
+                        continue;
+                    }
+                    match search_area(&part.area, &part.forbidden, search) {
+                        Ok(best) => {
+                            region_evaluations += best.evaluations;
+                            match area_stats(&part.area, best.bearing, search) {
+                                Ok(s) => stats += s,
+                                Err(e) => {
+                                    error.get_or_insert(e);
+                                }
+                            }
+                        }
+                        Err(e) => {
+                            error.get_or_insert(e);
+                        }
+                    }
+                }
+                cache.push((
+                    cut,
+                    CutOut {
+                        main,
+                        regions: stats,
+                    },
+                ));
+                cache.len() - 1
+            }
+        };
+        let cut_out = &cache[index].1;
+        match area_stats(&cut_out.main, b, search) {
+            Ok(mut s) => {
+                s += cut_out.regions;
+                search.objective.cost(&s, &search.machine)
+            }
+            Err(e) => {
+                error.get_or_insert(e);
+                f64::INFINITY
+            }
+        }
+    })?;
+    match error {
+        Some(e) => Err(e),
+        None => Ok(SearchResult {
+            evaluations: result.evaluations + region_evaluations,
+            ..result
+        }),
+    }
+}
+
+/// The swath direction and line placement of a reference: an AB line (in local metres) or
+/// boundary edge `edge` of the outer ring as drawn, shifted by `offset_m` to the right looking
+/// along it (default 0 for a line, half a width for an edge).
+///
+/// ```
+/// use furrow::direction::reference_direction;
+/// use furrow::swath::LinePlacement;
+/// use geo::coord;
+///
+/// // An AB line running north along x = 10: the grid goes through x = 10 (across = x at bearing 0).
+/// let (b, placement) = reference_direction(
+///     Some([coord! { x: 10., y: 0. }, coord! { x: 10., y: 50. }]), None, &[], None, 6.0, &[],
+/// )?;
+/// assert_eq!(b, 0.0);
+/// assert_eq!(placement, LinePlacement::Aligned { across: 10.0 });
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn reference_direction(
+    line: Option<[Coord; 2]>,
+    edge: Option<usize>,
+    drawn: &[Coord],
+    offset_m: Option<f64>,
+    width: f64,
+    forbidden: &[BearingRange],
+) -> Result<(f64, LinePlacement), PlanError> {
+    let (a, b, default_offset) = match (line, edge) {
+        (Some([a, b]), _) => (a, b, 0.0),
+        (None, Some(i)) => {
+            let n = drawn_edge_count(drawn);
+            match (drawn.get(i), drawn.get((i + 1) % n.max(1))) {
+                (Some(&a), Some(&b)) if i < n => (a, b, width / 2.0),
+                _ => return Err(PlanError::new(
+                    ErrorCode::OptionOutOfRange,
+                    format!(
+                        "option `referenceEdge` is {i}; the boundary as drawn has edges 0 to {}",
+                        n.saturating_sub(1)
+                    ),
+                )),
+            }
+        }
+        (None, None) => {
+            return Err(PlanError::new(
+                ErrorCode::InvalidOption,
+                "a reference direction needs `referenceLine` or `referenceEdge`",
+            ))
+        }
+    };
+    if (b.x - a.x).hypot(b.y - a.y) < 1e-6 {
+        return Err(PlanError::new(
+            ErrorCode::InvalidOption,
+            "the reference line's two points coincide; it gives no direction",
+        ));
+    }
+    let driving = bearing_of(a, b);
+    let bearing = swath_direction(driving);
+    if let Some(r) = forbidden.iter().find(|r| r.forbids(bearing)) {
+        return Err(PlanError::new(
+            ErrorCode::BearingForbidden,
+            format!(
+                "the reference runs at {:.1} degrees, in the forbidden range {} to {} degrees",
+                driving.to_degrees().rem_euclid(360.0),
+                r.from_deg,
+                r.to_deg
+            ),
+        ));
+    }
+    let frame = SweepFrame::new(bearing);
+    // The frame's across axis points right of the swath direction; right of a→b is the same
+    // side when a→b runs the swath direction, the other when it runs against it.
+    let same_way = (driving - bearing).abs() < 1e-9;
+    let right = if same_way { 1.0 } else { -1.0 };
+    let across = frame.project(a).0 + right * offset_m.unwrap_or(default_offset);
+    Ok((bearing, LinePlacement::Aligned { across }))
 }
 
 #[cfg(test)]

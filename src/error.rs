@@ -249,6 +249,10 @@ pub enum WarningCode {
     /// An obstacle is small across the driving direction (class A): swaths run past it with the
     /// implement lifted.
     ImplementLifted,
+    /// A prohibited region forbids the field's direction: it is worked in a direction of its own.
+    RegionOwnDirection,
+    /// The forbidden ranges leave a prohibited region no direction: it gets no swaths.
+    RegionNotWorked,
 }
 
 impl WarningCode {
@@ -268,6 +272,8 @@ impl WarningCode {
         WarningCode::ShortSwathsDropped,
         WarningCode::StraightConnections,
         WarningCode::ImplementLifted,
+        WarningCode::RegionOwnDirection,
+        WarningCode::RegionNotWorked,
     ];
 
     /// The code as it appears in JSON.
@@ -287,6 +293,8 @@ impl WarningCode {
             WarningCode::ShortSwathsDropped => "short_swaths_dropped",
             WarningCode::StraightConnections => "straight_connections",
             WarningCode::ImplementLifted => "implement_lifted",
+            WarningCode::RegionOwnDirection => "region_own_direction",
+            WarningCode::RegionNotWorked => "region_not_worked",
         }
     }
 }

@@ -1,8 +1,10 @@
 //! Metrics: the figures by which a plan is judged (Zhou et al. table 1, Fields2Cover's objectives).
 
 use crate::decompose::Blocks;
+use crate::direction::{DirectionMode, SearchMethod};
 use crate::field::Field;
 use crate::headland::Headlands;
+use crate::objective::{Machine, ObjectiveValues};
 use crate::obstacles::{ObstacleClass, ObstacleClasses};
 use crate::path::{Path, SegmentKind};
 use crate::swath::Swaths;
@@ -53,8 +55,43 @@ pub struct Summary {
     pub dropped_swath_count: usize,
     /// The swath direction as a compass bearing in degrees, in `[0, 180)`.
     pub bearing_deg: f64,
+    /// How the direction was chosen.
+    pub direction: DirectionReport,
+    /// Every objective's value for the plan's swaths (Fields2Cover's and Oksanen's), with turns
+    /// by the turn model.
+    pub objectives: ObjectiveValues,
+    /// Estimated operation time, seconds: swaths and headland passes at working speed, turns (by
+    /// the turn model) and connections at turning speed.
+    pub estimated_time_s: f64,
     /// Time the planner took, milliseconds.
     pub planning_ms: f64,
+}
+
+/// What the direction stage measured: how the direction was chosen, the objectives of the
+/// plan's swaths, and the machine they were measured for.
+#[derive(Debug, Clone, Copy)]
+pub struct DirectionFigures {
+    /// How the direction was chosen.
+    pub direction: DirectionReport,
+    /// The objectives' values.
+    pub objectives: ObjectiveValues,
+    /// The machine.
+    pub machine: Machine,
+}
+
+/// How the direction of a plan was chosen.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct DirectionReport {
+    /// The direction mode.
+    pub mode: DirectionMode,
+    /// The search method, when the direction was searched.
+    pub method: Option<SearchMethod>,
+    /// The objective minimised (and by which `cost` is measured).
+    pub objective: &'static str,
+    /// Number of directions evaluated (the field's and its prohibited regions').
+    pub evaluations: usize,
+    /// The objective's cost of the plan's swaths.
+    pub cost: f64,
 }
 
 /// Number of obstacles of each class.
@@ -82,7 +119,13 @@ pub fn summarise(
     swaths: &Swaths,
     blocks: &Blocks,
     path: &Path,
+    direction: &DirectionFigures,
 ) -> Summary {
+    let DirectionFigures {
+        direction,
+        objectives,
+        machine,
+    } = *direction;
     let swath_distance_m = path.length_of(SegmentKind::Swath);
     let headland_distance_m = path.length_of(SegmentKind::HeadlandPass);
     let turning_distance_m = path.length_of(SegmentKind::Turn);
@@ -127,6 +170,10 @@ pub fn summarise(
         },
         dropped_swath_count: swaths.dropped,
         bearing_deg: swaths.bearing.to_degrees(),
+        direction,
+        objectives,
+        estimated_time_s: working_distance_m / machine.working_speed
+            + (objectives.turning_distance_m + connection_distance_m) / machine.turning_speed,
         planning_ms: 0.0,
     }
 }

@@ -1,10 +1,12 @@
 //! The planner's options: one struct shared by the Rust API, the JavaScript API (camelCase
 //! keys) and the command-line planner (kebab-case flags), with a default for every option.
 
+use crate::direction::{DirectionMode, SearchMethod};
 use crate::error::{ErrorCode, PlanError};
 use crate::field::Coordinates;
 use crate::geometry::{forbids_every_direction, BearingRange};
 use crate::headland::{EdgePasses, HeadlandMode, HeadlandOrder};
+use crate::objective::{Machine, ObjectiveKind};
 use serde::{Deserialize, Serialize};
 
 /// How the field is to be planned. Every option has a default; JavaScript passes them as an object
@@ -49,10 +51,39 @@ pub struct PlanOptions {
     pub obstacle_threshold: Option<f64>,
     /// Minimum turning radius of the machine, metres.
     pub turn_radius: f64,
+    /// How the driving direction is chosen: `search` for the lowest cost by `objective`,
+    /// `longest-edge`, `fixed` (`bearing`) or `reference` (`referenceLine` or `referenceEdge`).
+    /// `None` follows from the options given: `bearing` means fixed, a reference line or edge
+    /// means reference, else search.
+    pub direction: Option<DirectionMode>,
+    /// The direction search: `coarse-to-fine` (Oksanen & Visala) or `brute-force`.
+    pub search: SearchMethod,
+    /// Step of the brute-force search, degrees.
+    #[serde(rename = "searchStep")]
+    pub search_step_deg: f64,
+    /// What the direction search minimises.
+    pub objective: ObjectiveKind,
     /// Driving direction of the swaths as a compass bearing in degrees (0 = north, clockwise; a
-    /// bearing and its reverse are the same direction). `None` follows the longest boundary edge.
+    /// bearing and its reverse are the same direction).
     #[serde(rename = "bearing")]
     pub bearing_deg: Option<f64>,
+    /// A reference (AB) line, two points in the input's coordinates: swaths run along it, on a
+    /// grid one width apart through it (shifted by `referenceOffset`), so that tracks follow
+    /// last year's.
+    pub reference_line: Option<[[f64; 2]; 2]>,
+    /// A boundary edge as drawn (edge `i` runs from point `i` to point `i + 1` of the outer ring)
+    /// to run the swaths along, on a grid one width apart from it.
+    pub reference_edge: Option<usize>,
+    /// Shift of the swath grid from the reference, metres, to the right looking from the line's
+    /// first point to its second. Default: 0 for a reference line (it is a track), half a width
+    /// for an edge (the first strip runs along it).
+    pub reference_offset: Option<f64>,
+    /// Speed while working, km/h: for the estimated operation time.
+    #[serde(rename = "workingSpeed")]
+    pub working_speed_kmh: f64,
+    /// Speed while turning, km/h.
+    #[serde(rename = "turningSpeed")]
+    pub turning_speed_kmh: f64,
     /// Driving directions that may not be used anywhere in the field (e.g. along drainage
     /// laterals), as compass bearing ranges; a range forbids the reverse directions too.
     #[serde(rename = "forbiddenBearings")]
@@ -75,7 +106,16 @@ impl Default for PlanOptions {
             headland_order: HeadlandOrder::Last,
             obstacle_threshold: None,
             turn_radius: 8.0,
+            direction: None,
+            search: SearchMethod::CoarseToFine,
+            search_step_deg: 1.0,
+            objective: ObjectiveKind::Time,
             bearing_deg: None,
+            reference_line: None,
+            reference_edge: None,
+            reference_offset: None,
+            working_speed_kmh: 8.0,
+            turning_speed_kmh: 5.0,
             forbidden_bearings_deg: Vec::new(),
             min_swath_length: None,
             coordinates: Coordinates::Wgs84,
@@ -127,9 +167,54 @@ pub const OPTION_DOCS: &[(&str, &str, &str)] = &[
         "minimum turning radius of the machine (default 8)",
     ),
     (
+        "direction",
+        "search|longest-edge|fixed|reference",
+        "how the driving direction is chosen (default: fixed if bearing is given, reference if a reference line or edge is, else search)",
+    ),
+    (
+        "search",
+        "coarse-to-fine|brute-force",
+        "direction search: Oksanen's coarse-to-fine (about 36 directions) or every direction at searchStep (default coarse-to-fine)",
+    ),
+    (
+        "searchStep",
+        "degrees",
+        "step of the brute-force direction search (default 1)",
+    ),
+    (
+        "objective",
+        "time|swath-count|swath-length|coverage|overlap|turn-count|oksanen",
+        "what the direction search minimises (default time: estimated operation time)",
+    ),
+    (
         "bearing",
         "degrees",
-        "driving direction as a compass bearing, 0 = north (default: along the longest boundary edge)",
+        "driving direction as a compass bearing, 0 = north (default: searched)",
+    ),
+    (
+        "referenceLine",
+        "[[x,y],[x,y]]",
+        "AB line in the input's coordinates: swaths run along it on a grid one width apart through it (default none)",
+    ),
+    (
+        "referenceEdge",
+        "index",
+        "boundary edge as drawn (edge i from point i to i+1) to run the swaths along, the first strip beside it (default none)",
+    ),
+    (
+        "referenceOffset",
+        "metres",
+        "shift of the swath grid to the right of the reference, looking from its first point (default 0 for a line, half a width for an edge)",
+    ),
+    (
+        "workingSpeed",
+        "km/h",
+        "speed while working, for the estimated operation time (default 8)",
+    ),
+    (
+        "turningSpeed",
+        "km/h",
+        "speed while turning (default 5)",
     ),
     (
         "forbiddenBearings",
@@ -156,6 +241,8 @@ pub const MIN_WIDTH_M: f64 = 0.1;
 pub const MAX_HEADLAND_PASSES: u32 = 50;
 /// Largest turning radius accepted, metres.
 pub const MAX_TURN_RADIUS_M: f64 = 200.0;
+/// Largest working or turning speed accepted, km/h.
+pub const MAX_SPEED_KMH: f64 = 60.0;
 
 impl PlanOptions {
     /// Checks that every option is within the range the planner accepts.
@@ -231,6 +318,50 @@ impl PlanOptions {
                 return out_of_range("obstacleThreshold", format!("{t}"), "0 or more metres");
             }
         }
+        if !(self.search_step_deg.is_finite() && (0.01..=90.0).contains(&self.search_step_deg)) {
+            return out_of_range(
+                "searchStep",
+                format!("{}", self.search_step_deg),
+                "between 0.01 and 90 degrees",
+            );
+        }
+        for (name, v) in [
+            ("workingSpeed", self.working_speed_kmh),
+            ("turningSpeed", self.turning_speed_kmh),
+        ] {
+            if !(v.is_finite() && v > 0.0 && v <= MAX_SPEED_KMH) {
+                return out_of_range(
+                    name,
+                    format!("{v}"),
+                    &format!("more than 0 and at most {MAX_SPEED_KMH} km/h"),
+                );
+            }
+        }
+        if let Some(line) = self.reference_line {
+            if line.iter().flatten().any(|v| !v.is_finite()) {
+                return out_of_range(
+                    "referenceLine",
+                    format!("{line:?}"),
+                    "two points of finite coordinates",
+                );
+            }
+            if line[0] == line[1] {
+                return Err(PlanError::new(
+                    ErrorCode::InvalidOption,
+                    "option `referenceLine` has two equal points; it needs two different points to give a direction",
+                ));
+            }
+        }
+        if let Some(o) = self.reference_offset {
+            if !o.is_finite() {
+                return out_of_range(
+                    "referenceOffset",
+                    format!("{o}"),
+                    "a finite number of metres",
+                );
+            }
+        }
+        self.direction_mode()?;
         if let Some(m) = self.min_swath_length {
             if !(m.is_finite() && m >= 0.0) {
                 return out_of_range("minSwathLength", format!("{m}"), "0 or more metres");
@@ -246,6 +377,44 @@ impl PlanOptions {
         })?;
         options.validate()?;
         Ok(options)
+    }
+
+    /// The direction mode, given or following from the options given.
+    pub fn direction_mode(&self) -> Result<DirectionMode, PlanError> {
+        let invalid = |m: String| Err(PlanError::new(ErrorCode::InvalidOption, m));
+        let has_reference = self.reference_line.is_some() || self.reference_edge.is_some();
+        if self.reference_line.is_some() && self.reference_edge.is_some() {
+            return invalid(
+                "options `referenceLine` and `referenceEdge` both given; give one reference".into(),
+            );
+        }
+        match self.direction {
+            None => match (self.bearing_deg, has_reference) {
+                (Some(_), true) => invalid(
+                    "options `bearing` and a reference line or edge both given; give one of them, or set `direction`".into(),
+                ),
+                (Some(_), false) => Ok(DirectionMode::Fixed),
+                (None, true) => Ok(DirectionMode::Reference),
+                (None, false) => Ok(DirectionMode::Search),
+            },
+            Some(DirectionMode::Fixed) if self.bearing_deg.is_none() => {
+                invalid("option `direction` is `fixed` but no `bearing` is given".into())
+            }
+            Some(DirectionMode::Reference) if !has_reference => invalid(
+                "option `direction` is `reference` but neither `referenceLine` nor `referenceEdge` is given".into(),
+            ),
+            Some(mode) => Ok(mode),
+        }
+    }
+
+    /// The machine as the objectives see it (speeds in metres per second).
+    pub fn machine(&self) -> Machine {
+        Machine {
+            width: self.width,
+            turn_radius: self.turn_radius,
+            working_speed: self.working_speed_kmh / 3.6,
+            turning_speed: self.turning_speed_kmh / 3.6,
+        }
     }
 
     /// The class-A obstacle threshold in metres, with its default applied.
@@ -292,6 +461,9 @@ mod tests {
             r#"{"headlandTolerance": 90}"#,
             r#"{"obstacleThreshold": -2}"#,
             r#"{"edgePasses": [{"edge": 0, "passes": 99}]}"#,
+            r#"{"searchStep": 0}"#,
+            r#"{"workingSpeed": 0}"#,
+            r#"{"turningSpeed": 100}"#,
         ] {
             let e = PlanOptions::from_json_str(text).unwrap_err();
             assert_eq!(e.code, ErrorCode::OptionOutOfRange, "{text}");
@@ -310,6 +482,35 @@ mod tests {
         assert_eq!(e.code, ErrorCode::NoAllowedDirection);
         let e = PlanOptions::from_json_str(r#"{"forbiddenBearings": [[0, 90, 4]]}"#).unwrap_err();
         assert_eq!(e.code, ErrorCode::InvalidOption);
+    }
+
+    #[test]
+    fn direction_mode_follows_from_the_options_given() {
+        let mode = |t: &str| PlanOptions::from_json_str(t).map(|o| o.direction_mode().unwrap());
+        assert_eq!(mode("{}").unwrap(), DirectionMode::Search);
+        assert_eq!(mode(r#"{"bearing": 10}"#).unwrap(), DirectionMode::Fixed);
+        assert_eq!(
+            mode(r#"{"referenceEdge": 2}"#).unwrap(),
+            DirectionMode::Reference
+        );
+        assert_eq!(
+            mode(r#"{"direction": "longest-edge", "bearing": 10}"#).unwrap(),
+            DirectionMode::LongestEdge
+        );
+        for bad in [
+            r#"{"bearing": 10, "referenceEdge": 1}"#,
+            r#"{"direction": "fixed"}"#,
+            r#"{"direction": "reference"}"#,
+            r#"{"referenceLine": [[1, 2], [1, 2]]}"#,
+            r#"{"referenceLine": [[1, 2], [3, 4]], "referenceEdge": 0}"#,
+            r#"{"direction": "sideways"}"#,
+        ] {
+            assert_eq!(
+                PlanOptions::from_json_str(bad).unwrap_err().code,
+                ErrorCode::InvalidOption,
+                "{bad}"
+            );
+        }
     }
 
     #[test]

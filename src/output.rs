@@ -5,10 +5,10 @@
 //!
 //! | kind | geometry | properties |
 //! |---|---|---|
-//! | `block` | Polygon | `index`, `order` (position in the order blocks are worked), `swath_count`, `bearing_deg` |
+//! | `block` | Polygon | `index`, `order` (position in the order blocks are worked), `swath_count`, `bearing_deg`, `region` (if it lies in a prohibited region worked in its own direction) |
 //! | `obstacle` | Polygon | `index`, `feature` (index of the input feature), `name` (if it had one), `class` (`A`-`D`), `group` (for class C: the `obstacle_group` it was merged into) |
 //! | `obstacle_group` | Polygon | `index`, `class` (`C`), `members` (indices of the obstacles merged) |
-//! | `swath` | LineString | `sequence`, `index`, `block`, `line`, `length_m`, `bearing_deg` (driving direction), `lifted` (if any: `[from, to]` metres from the swath's first point where the implement is lifted over a class A obstacle) |
+//! | `swath` | LineString | `sequence`, `index`, `block`, `line`, `length_m`, `bearing_deg` (driving direction), `lifted` (if any: `[from, to]` metres from the swath's first point where the implement is lifted over a class A obstacle), `overlap_m` (on a line working a leftover strip: its overlap with the neighbouring strip), `region` (in a prohibited region worked in its own direction) |
 //! | `headland` | LineString | `sequence`, `pass` (1 = nearest the boundary or obstacle), `around` (`field` or `obstacle`), `closed`, `length_m` |
 //! | `turn` | LineString | `sequence`, `block`, `length_m` |
 //! | `connection` | LineString | `sequence`, `length_m` |
@@ -110,6 +110,13 @@ pub struct Properties {
     /// its first point.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub lifted: Option<Vec<[f64; 2]>>,
+    /// For a swath on a line placed to work a leftover strip: how far (metres) its strip
+    /// overlaps its neighbour's.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub overlap_m: Option<f64>,
+    /// For a swath or block in a prohibited region worked in its own direction: the region.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub region: Option<usize>,
 }
 
 /// A GeoJSON geometry of a plan feature.
@@ -140,6 +147,7 @@ impl Plan {
                     order: order_of(block.index),
                     swath_count: Some(block.swaths.len()),
                     bearing_deg: Some(round(block.bearing.to_degrees(), 1e-6)),
+                    region: block.swaths.first().and_then(|&s| self.region_of(s)),
                     ..Default::default()
                 },
                 out.polygon(&block.outline),
@@ -201,6 +209,13 @@ impl Plan {
                         p.bearing_deg = Some(round(bearing_of(a, b).to_degrees(), 1e-6));
                     }
                     p.lifted = self.lifted(swath, reversed);
+                    p.overlap_m = self
+                        .swaths
+                        .swaths
+                        .get(swath)
+                        .filter(|s| s.overlap_m > 0.0)
+                        .map(|s| round(s.overlap_m, 1e-3));
+                    p.region = self.region_of(swath);
                 }
                 Some(&RouteStep::HeadlandPass { pass, .. }) => {
                     if let Some(h) = self.headlands.passes.get(pass) {
@@ -228,6 +243,15 @@ impl Plan {
     pub fn to_geojson_string(&self) -> String {
         // ok: the output types hold only strings, integers and finite floats; serde_json cannot fail.
         serde_json::to_string(&self.to_geojson()).unwrap_or_default()
+    }
+
+    /// The prohibited region whose own direction swath `i` follows, if any.
+    fn region_of(&self, i: usize) -> Option<usize> {
+        self.swaths
+            .areas
+            .iter()
+            .find(|a| a.swaths.contains(&i))
+            .and_then(|a| a.region)
     }
 
     /// Where the implement is lifted along swath `i`, metres from its first point as driven.

@@ -6,18 +6,26 @@
 //! keeps their results together in a [`Plan`].
 
 use crate::decompose::{cluster_swaths, Blocks};
-use crate::direction::{choose_bearing, DirectionRule};
+use crate::direction::{
+    choose_bearing, reference_direction, search_area, search_field, AreaSearch, DirectionMode,
+    DirectionRule,
+};
 use crate::error::{PlanError, Warning, WarningCode};
 use crate::field::simplify::tolerance_for_width;
 use crate::field::Field;
+use crate::geometry::forbids_every_direction;
 use crate::headland::edges::{passes_per_edge, EdgeRule};
+use crate::headland::offset::inset;
 use crate::headland::{build, HeadlandSettings, Headlands};
-use crate::metrics::{summarise, Summary};
+use crate::metrics::{summarise, DirectionFigures, DirectionReport, Summary};
+use crate::objective::{measure_all, ObjectiveValues};
 use crate::obstacles::{classify, ClassSettings, ObstacleClass, ObstacleClasses};
 use crate::options::PlanOptions;
 use crate::path::{build_path, Path};
+use crate::prohibited::{forbidding, split};
 use crate::route::{boustrophedon, Route};
-use crate::swath::{generate, lifts, Swaths};
+use crate::swath::{generate_with, lifts, LinePlacement, SwathArea, SwathSettings, Swaths};
+use geo::{BoundingRect, MultiPolygon, Polygon};
 use web_time::Instant;
 
 /// A coverage plan and everything the stages found on the way to it.
@@ -98,13 +106,56 @@ pub(crate) fn plan_stages(
     options.validate()?;
     let width = options.width;
     warnings.extend(field.simplify(tolerance_for_width(width)));
-    let rule = match options.bearing_deg {
-        Some(bearing_deg) => DirectionRule::Fixed { bearing_deg },
-        None => DirectionRule::LongestEdge {
-            tolerance_m: width / 2.0,
-        },
+    let forbidden = &options.forbidden_bearings_deg;
+    let objective = options.objective.objective();
+    let search = AreaSearch {
+        method: options.search,
+        step_deg: options.search_step_deg,
+        width,
+        min_length: options.min_swath_length_m(),
+        machine: options.machine(),
+        objective: objective.as_ref(),
     };
-    let bearing = choose_bearing(&field, rule, &options.forbidden_bearings_deg)?;
+    let mode = options.direction_mode()?;
+    let mut evaluations = 0;
+    let mut placement = LinePlacement::FromEdge;
+    let bearing = match mode {
+        DirectionMode::Fixed => choose_bearing(
+            &field,
+            DirectionRule::Fixed {
+                bearing_deg: options.bearing_deg.unwrap_or(0.0),
+            },
+            forbidden,
+        )?,
+        DirectionMode::LongestEdge => choose_bearing(
+            &field,
+            DirectionRule::LongestEdge {
+                tolerance_m: width / 2.0,
+            },
+            forbidden,
+        )?,
+        DirectionMode::Reference => {
+            let line = options
+                .reference_line
+                .map(|[a, b]| [field.frame.to_local(a), field.frame.to_local(b)]);
+            let (b, p) = reference_direction(
+                line,
+                options.reference_edge,
+                &field.drawn_boundary,
+                options.reference_offset,
+                width,
+                forbidden,
+            )?;
+            placement = p;
+            b
+        }
+        DirectionMode::Search => {
+            let area = search_region(&field, options);
+            let best = search_field(&area, &field.prohibited, forbidden, &search)?;
+            evaluations += best.evaluations;
+            best.bearing
+        }
+    };
     let edge_passes = passes_per_edge(
         &field.boundary,
         &field.drawn_boundary,
@@ -137,12 +188,74 @@ pub(crate) fn plan_stages(
         },
     )
     .map_err(|e| e.at_feature(field.feature))?;
-    let mut swaths = generate(
-        &headlands.inner,
-        bearing,
-        width,
-        options.min_swath_length_m(),
+    // Prohibited regions that forbid the direction are cut out and worked in their own.
+    let cut = forbidding(&field.prohibited, bearing);
+    let (main_area, parts) = if cut.is_empty() {
+        (headlands.inner.clone(), Vec::new())
+    } else {
+        split(&headlands.inner, &field.prohibited, &cut, forbidden)
+    };
+    let mut swaths = generate_with(
+        &main_area,
+        &SwathSettings {
+            bearing,
+            width,
+            min_length: options.min_swath_length_m(),
+            placement,
+        },
     )?;
+    swaths.areas.push(SwathArea {
+        swaths: 0..swaths.swaths.len(),
+        bearing,
+        region: None,
+        area: main_area,
+    });
+    for part in parts {
+        let region = &field.prohibited[part.region];
+        if forbids_every_direction(&part.forbidden) {
+            warnings.push(
+                Warning::new(
+                    WarningCode::RegionNotWorked,
+                    format!(
+                        "{} forbids the field's direction, and with the other forbidden ranges no direction is left for it; it gets no swaths",
+                        region.subject()
+                    ),
+                )
+                .at_feature(region.feature),
+            );
+            continue;
+        }
+        let best = search_area(&part.area, &part.forbidden, &search)?;
+        evaluations += best.evaluations;
+        let mut own = generate_with(
+            &part.area,
+            &SwathSettings {
+                bearing: best.bearing,
+                width,
+                min_length: options.min_swath_length_m(),
+                placement: LinePlacement::FromEdge,
+            },
+        )?;
+        own.areas.push(SwathArea {
+            swaths: 0..own.swaths.len(),
+            bearing: best.bearing,
+            region: Some(part.region),
+            area: part.area,
+        });
+        swaths.append(own);
+        warnings.push(
+            Warning::new(
+                WarningCode::RegionOwnDirection,
+                format!(
+                    "{} forbids the field's direction of {:.1} degrees; it is worked at {:.1} degrees",
+                    region.subject(),
+                    bearing.to_degrees(),
+                    best.bearing.to_degrees()
+                ),
+            )
+            .at_feature(region.feature),
+        );
+    }
     let small: Vec<(usize, &geo::Polygon)> = field
         .obstacles
         .iter()
@@ -196,7 +309,28 @@ pub(crate) fn plan_stages(
         None,
     );
     let path = build_path(&route, &swaths, &headlands.passes);
-    let summary = summarise(&field, &obstacles, &headlands, &swaths, &blocks, &path);
+    let machine = options.machine();
+    let stats = measure_all(&swaths, &machine);
+    let direction = DirectionReport {
+        mode,
+        method: (mode == DirectionMode::Search).then_some(options.search),
+        objective: objective.name(),
+        evaluations,
+        cost: objective.cost(&stats, &machine),
+    };
+    let summary = summarise(
+        &field,
+        &obstacles,
+        &headlands,
+        &swaths,
+        &blocks,
+        &path,
+        &DirectionFigures {
+            direction,
+            objectives: ObjectiveValues::of(&stats, &machine),
+            machine,
+        },
+    );
     Ok(Plan {
         field,
         options: options.clone(),
@@ -209,4 +343,24 @@ pub(crate) fn plan_stages(
         summary,
         warnings,
     })
+}
+
+/// The area the direction search measures: the field less its obstacles (but those too small to
+/// split it at any direction) and less a constant headland. The planner's headland may depend on
+/// the direction (in `needed` mode, and through the obstacle classes); measuring every candidate
+/// on one area keeps the search to one offset.
+fn search_region(field: &Field, options: &PlanOptions) -> MultiPolygon {
+    let threshold = options.obstacle_threshold_m();
+    let mut holes = field.boundary.interiors().to_vec();
+    for o in &field.obstacles {
+        let diagonal = o
+            .polygon
+            .bounding_rect()
+            .map_or(0.0, |r| r.width().hypot(r.height()));
+        if diagonal >= threshold {
+            holes.push(o.polygon.exterior().clone());
+        }
+    }
+    let region = MultiPolygon::new(vec![Polygon::new(field.boundary.exterior().clone(), holes)]);
+    inset(&region, options.headland_passes as f64 * options.width)
 }

@@ -14,6 +14,38 @@ use geo::{Coord, Line, MultiPolygon};
 
 /// Swath-line spacing below this fraction of the width is not worth an extra, overlapping line.
 const LEFTOVER_TOLERANCE: f64 = 1e-3;
+/// Pieces of one line closer than this (metres) are one swath: they meet where two parts of the
+/// area touch.
+const MERGE_GAP_M: f64 = 1e-3;
+
+/// Where the swath lines lie across the field.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub enum LinePlacement {
+    /// The first line half a width inside the area's edge (Zhou et al. 2.2.3), the following ones
+    /// a width apart; a leftover strip at the far side gets one more, overlapping line.
+    #[default]
+    FromEdge,
+    /// On a grid a width apart through `across` (a reference line: last year's AB line, or a
+    /// line half a width inside a boundary edge); leftover strips at either side get one more,
+    /// overlapping line each.
+    Aligned {
+        /// The `across` coordinate (in the sweep frame of the bearing) of one grid line.
+        across: f64,
+    },
+}
+
+/// What [`generate_with`] needs besides the area.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SwathSettings {
+    /// Swath direction, compass radians.
+    pub bearing: f64,
+    /// Working width, metres.
+    pub width: f64,
+    /// Pieces shorter than this (metres) are dropped.
+    pub min_length: f64,
+    /// Where the lines lie across the area.
+    pub placement: LinePlacement,
+}
 /// Most swath lines a field may need at one bearing (a 40 km field at 0.4 m, a 2 km field at
 /// 2 cm); beyond that the width is a mistake, and the plan would take seconds and gigabytes.
 pub const MAX_SWATH_LINES: usize = 100_000;
@@ -23,6 +55,15 @@ pub const MAX_SWATH_LINES: usize = 100_000;
 pub struct Swath {
     /// Index among all swaths of the plan, ordered across the field, then along each line.
     pub index: usize,
+    /// Its swath direction, compass radians in `[0, π)`: the field's direction, or that of the
+    /// prohibited region it lies in.
+    pub bearing: f64,
+    /// The frame of its direction, in which `across` and `along` are measured.
+    pub frame: SweepFrame,
+    /// How far (metres, across) its strip overlaps the strip of the neighbouring line: zero
+    /// except on a line placed to work the strip left over at the side of the field, which is
+    /// narrower than a working width.
+    pub overlap_m: f64,
     /// Index of the swath line it lies on, counted across the field (0 = leftmost looking along
     /// the driving direction).
     pub line_index: usize,
@@ -42,14 +83,15 @@ impl Swath {
     }
 }
 
-/// The swaths of a field at one driving direction.
+/// The swaths of a field: at the field's driving direction, and at their own directions in the
+/// prohibited regions that forbid it.
 #[derive(Debug, Clone)]
 pub struct Swaths {
-    /// The swath direction, compass radians in `[0, π)`.
+    /// The field's swath direction, compass radians in `[0, π)`.
     pub bearing: f64,
     /// The working width, metres.
     pub width: f64,
-    /// The frame in which swath lines are `across = const`.
+    /// The frame of the field's direction, in which its swath lines are `across = const`.
     pub frame: SweepFrame,
     /// The swaths, ordered by line, then along the line.
     pub swaths: Vec<Swath>,
@@ -57,6 +99,23 @@ pub struct Swaths {
     pub dropped: usize,
     /// Where the implement is lifted over small (class A) obstacles, ordered by swath.
     pub lifts: Vec<Lift>,
+    /// The areas the swaths cover, each at one direction: the inner field (less the prohibited
+    /// regions that forbid the field's direction), then those regions. Empty until the planner
+    /// fills it.
+    pub areas: Vec<SwathArea>,
+}
+
+/// An area worked at one direction, and its swaths.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SwathArea {
+    /// Its swaths, a range of indices into [`Swaths::swaths`].
+    pub swaths: std::ops::Range<usize>,
+    /// Their swath direction, compass radians in `[0, π)`.
+    pub bearing: f64,
+    /// The prohibited region (index into the field's) it is part of, if it is one.
+    pub region: Option<usize>,
+    /// The area.
+    pub area: MultiPolygon,
 }
 
 /// A stretch of a swath where the implement is lifted over a small obstacle (class A) that the
@@ -92,14 +151,23 @@ pub fn lifts(swaths: &Swaths, obstacles: &[(usize, &geo::Polygon)]) -> Vec<Lift>
     let half = swaths.width / 2.0;
     let mut out = Vec::new();
     for &(index, polygon) in obstacles {
-        let mut c = (f64::INFINITY, f64::NEG_INFINITY);
-        let mut a = (f64::INFINITY, f64::NEG_INFINITY);
-        for &p in &polygon.exterior().0 {
-            let (x, y) = swaths.frame.project(p);
-            c = (c.0.min(x), c.1.max(x));
-            a = (a.0.min(y), a.1.max(y));
-        }
+        let extent = |frame: &SweepFrame| {
+            let mut c = (f64::INFINITY, f64::NEG_INFINITY);
+            let mut a = (f64::INFINITY, f64::NEG_INFINITY);
+            for &p in &polygon.exterior().0 {
+                let (x, y) = frame.project(p);
+                c = (c.0.min(x), c.1.max(x));
+                a = (a.0.min(y), a.1.max(y));
+            }
+            (c, a)
+        };
+        let main = extent(&swaths.frame);
         for s in &swaths.swaths {
+            let (c, a) = if s.frame == swaths.frame {
+                main
+            } else {
+                extent(&s.frame)
+            };
             if s.across + half <= c.0 || s.across - half >= c.1 {
                 continue;
             }
@@ -150,7 +218,44 @@ pub fn line_offsets(lo: f64, hi: f64, width: f64) -> Vec<f64> {
     offsets
 }
 
-/// Generates the swaths covering `inner` at swath direction `bearing` (compass radians).
+/// Offsets of swath lines on the grid `origin + k·width` covering `[lo, hi]`, each marked `true`
+/// where it is an extra line for a leftover strip (off the grid, overlapping its neighbour).
+///
+/// ```
+/// use furrow::swath::aligned_offsets;
+///
+/// // Grid through 0 at 6 m over [-1, 13]: lines at 6 (strip 3..9) and two leftover lines for
+/// // the strips -1..3 and 9..13.
+/// assert_eq!(aligned_offsets(-1.0, 13.0, 6.0, 0.0), vec![(2.0, true), (6.0, false), (10.0, true)]);
+/// ```
+pub fn aligned_offsets(lo: f64, hi: f64, width: f64, origin: f64) -> Vec<(f64, bool)> {
+    let extent = hi - lo;
+    if !(extent > 0.0 && width > 0.0 && origin.is_finite()) {
+        return Vec::new();
+    }
+    if extent <= width {
+        return vec![((lo + hi) / 2.0, true)];
+    }
+    let tol = LEFTOVER_TOLERANCE * width;
+    let k0 = ((lo + width / 2.0 - origin - tol) / width).ceil();
+    let k1 = ((hi - width / 2.0 - origin + tol) / width).floor();
+    let mut out: Vec<(f64, bool)> = Vec::new();
+    if k1 >= k0 {
+        out.extend((0..=(k1 - k0) as usize).map(|i| (origin + (k0 + i as f64) * width, false)));
+    }
+    let first_edge = out.first().map_or(hi, |l| l.0 - width / 2.0);
+    if first_edge - lo > tol {
+        out.insert(0, (lo + width / 2.0, true));
+    }
+    let last_edge = out.last().map_or(lo, |l| l.0 + width / 2.0);
+    if hi - last_edge > tol {
+        out.push((hi - width / 2.0, true));
+    }
+    out
+}
+
+/// Generates the swaths covering `inner` at swath direction `bearing` (compass radians), the
+/// first line half a width inside the edge ([`LinePlacement::FromEdge`]).
 ///
 /// ```
 /// use furrow::swath::generate;
@@ -170,10 +275,47 @@ pub fn generate(
     width: f64,
     min_length: f64,
 ) -> Result<Swaths, PlanError> {
+    generate_with(
+        inner,
+        &SwathSettings {
+            bearing,
+            width,
+            min_length,
+            placement: LinePlacement::FromEdge,
+        },
+    )
+}
+
+/// Generates the swaths covering `area` with the given direction, width, minimum length and
+/// line placement.
+///
+/// ```
+/// use furrow::swath::{generate_with, LinePlacement, SwathSettings};
+/// use geo::{polygon, MultiPolygon};
+///
+/// // Last year's lines ran north through x = 1: this year's follow them, 6 m apart.
+/// let strip = polygon![(x: 0., y: 0.), (x: 30., y: 0.), (x: 30., y: 100.), (x: 0., y: 100.)];
+/// let settings = SwathSettings {
+///     bearing: 0.0, width: 6.0, min_length: 6.0, placement: LinePlacement::Aligned { across: 1.0 },
+/// };
+/// let swaths = generate_with(&MultiPolygon::new(vec![strip]), &settings)?;
+/// let lines: Vec<f64> = swaths.swaths.iter().map(|s| s.across).collect();
+/// // 3 (leftover strip 0..6 against the grid's 1 - 3 = -2), then 7, 13, 19, 25, and 27 for 28..30.
+/// assert_eq!(lines, vec![3.0, 7.0, 13.0, 19.0, 25.0, 27.0]);
+/// assert_eq!(swaths.swaths[0].overlap_m, 2.0);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn generate_with(area: &MultiPolygon, settings: &SwathSettings) -> Result<Swaths, PlanError> {
+    let SwathSettings {
+        bearing,
+        width,
+        min_length,
+        placement,
+    } = *settings;
     let frame = SweepFrame::new(bearing);
     let mut swaths = Vec::new();
     let mut dropped = 0;
-    if let Some((lo, hi)) = frame.across_extent(inner) {
+    if let Some((lo, hi)) = frame.across_extent(area) {
         let lines = (hi - lo) / width;
         if lines.is_nan() || lines > MAX_SWATH_LINES as f64 {
             return Err(PlanError::new(
@@ -183,16 +325,42 @@ pub fn generate(
                 ),
             ));
         }
-        let offsets = line_offsets(lo, hi, width);
-        let pieces = frame.clip(inner, &offsets);
-        for (line_index, (&across, line)) in offsets.iter().zip(&pieces).enumerate() {
-            for &(a0, a1) in line {
+        let placed: Vec<(f64, bool)> = match placement {
+            LinePlacement::FromEdge => {
+                let offsets = line_offsets(lo, hi, width);
+                let n = offsets.len();
+                let leftover =
+                    n >= 2 && offsets[n - 1] - offsets[n - 2] < width * (1.0 - LEFTOVER_TOLERANCE);
+                offsets
+                    .into_iter()
+                    .enumerate()
+                    .map(|(i, c)| (c, (leftover && i + 1 == n) || n == 1))
+                    .collect()
+            }
+            LinePlacement::Aligned { across } => aligned_offsets(lo, hi, width, across),
+        };
+        let offsets: Vec<f64> = placed.iter().map(|l| l.0).collect();
+        let pieces = frame.clip(area, &offsets);
+        for (line_index, (&(across, leftover), line)) in placed.iter().zip(&pieces).enumerate() {
+            // A leftover line's strip overlaps the strip of the line beside it.
+            let overlap_m = if leftover {
+                let gap = |j: Option<&(f64, bool)>| j.map_or(width, |n| (n.0 - across).abs());
+                let next_gap = gap(placed.get(line_index + 1));
+                let prev_gap = gap(line_index.checked_sub(1).and_then(|p| placed.get(p)));
+                (width - next_gap.min(prev_gap)).max(0.0)
+            } else {
+                0.0
+            };
+            for (a0, a1) in merge_touching(line) {
                 if a1 - a0 < min_length.max(1e-6) {
                     dropped += 1;
                     continue;
                 }
                 swaths.push(Swath {
                     index: swaths.len(),
+                    bearing,
+                    frame,
+                    overlap_m,
                     line_index,
                     centre: Line::new(frame.point(across, a0), frame.point(across, a1)),
                     across,
@@ -208,10 +376,45 @@ pub fn generate(
         swaths,
         dropped,
         lifts: Vec::new(),
+        areas: Vec::new(),
     })
 }
 
+/// Pieces of one line with the gaps under [`MERGE_GAP_M`] closed.
+fn merge_touching(pieces: &[(f64, f64)]) -> Vec<(f64, f64)> {
+    let mut out: Vec<(f64, f64)> = Vec::with_capacity(pieces.len());
+    for &(a0, a1) in pieces {
+        match out.last_mut() {
+            Some(last) if a0 - last.1 < MERGE_GAP_M => last.1 = last.1.max(a1),
+            _ => out.push((a0, a1)),
+        }
+    }
+    out
+}
+
 impl Swaths {
+    /// Appends the swaths of another area (a prohibited region worked in its own direction):
+    /// their indices follow on, and their lines are numbered apart from this set's so that no
+    /// block joins swaths of the two.
+    pub fn append(&mut self, other: Swaths) {
+        let first = self.swaths.len();
+        let line_base = self.swaths.last().map_or(0, |s| s.line_index + 2);
+        self.swaths.extend(other.swaths.into_iter().map(|mut s| {
+            s.index += first;
+            s.line_index += line_base;
+            s
+        }));
+        self.dropped += other.dropped;
+        self.lifts.extend(other.lifts.into_iter().map(|mut l| {
+            l.swath += first;
+            l
+        }));
+        self.areas.extend(other.areas.into_iter().map(|mut a| {
+            a.swaths = a.swaths.start + first..a.swaths.end + first;
+            a
+        }));
+    }
+
     /// The end of swath `i` at its start (`at_end == false`) or end.
     pub fn end_point(&self, i: usize, at_end: bool) -> Option<Coord> {
         self.swaths
