@@ -291,6 +291,11 @@ export interface DirectionReport {
   evaluations: number;
   /** The objective's cost of the plan's swaths (seconds for `"time"`). */
   cost: number;
+  /**
+   * The lowest cost the search found, on the area it measures (the field less a constant
+   * headland); `null` when the direction was not searched.
+   */
+  search_cost: number | null;
 }
 
 /** The objectives' values for a plan's swaths. */

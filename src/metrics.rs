@@ -92,6 +92,9 @@ pub struct DirectionReport {
     pub evaluations: usize,
     /// The objective's cost of the plan's swaths.
     pub cost: f64,
+    /// The lowest cost the search found, measured on its area (the field less a constant
+    /// headland), when the direction was searched.
+    pub search_cost: Option<f64>,
 }
 
 /// Number of obstacles of each class.

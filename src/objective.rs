@@ -17,7 +17,7 @@
 
 use crate::decompose::block_members;
 use crate::swath::{Swath, Swaths};
-use geo::{Area, MultiPolygon};
+use geo::{Area, Coord, MultiPolygon};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
 use std::ops::AddAssign;
@@ -30,10 +30,13 @@ pub struct SwathStats {
     pub swath_count: usize,
     /// Total length of the swaths, metres.
     pub swath_length_m: f64,
-    /// Number of turns between swaths, each block worked boustrophedon.
+    /// Number of turns from one swath to the next: within blocks (worked boustrophedon) and from
+    /// each block to the next, so that a direction cannot look better by breaking the field
+    /// into more blocks.
     pub turn_count: usize,
     /// Length of those turns by the turn model ([`turn_length`] plus the run along the headland
-    /// between the swaths' ends), metres.
+    /// between the swaths' ends; between blocks, a turn and the way between their nearest
+    /// corners), metres.
     pub turning_distance_m: f64,
     /// Area of the region the swaths are to cover, square metres.
     pub area_m2: f64,
@@ -295,7 +298,7 @@ pub struct ObjectiveValues {
     pub covered_area_m2: f64,
     /// Area worked twice or over the inner field's edge by the strips, square metres.
     pub overlap_m2: f64,
-    /// Number of turns between swaths.
+    /// Number of turns from one swath to the next, the moves between blocks included.
     pub turn_count: usize,
     /// Length of those turns by the turn model, metres.
     pub turning_distance_m: f64,
@@ -347,7 +350,9 @@ pub fn measure(swaths: &[Swath], width: f64, area: &MultiPolygon, m: &Machine) -
         ..SwathStats::default()
     };
     stats.strip_area_m2 = stats.swath_length_m * width;
-    for block in block_members(swaths) {
+    let blocks = block_members(swaths);
+    let mut previous_corners: Option<[Coord; 4]> = None;
+    for block in &blocks {
         for (k, pair) in block.windows(2).enumerate() {
             let (a, b) = (&swaths[pair[0]], &swaths[pair[1]]);
             // Boustrophedon: the first swath driven forward, so turns alternate ends.
@@ -359,6 +364,22 @@ pub fn measure(swaths: &[Swath], width: f64, area: &MultiPolygon, m: &Machine) -
             stats.turn_count += 1;
             stats.turning_distance_m += turn_length(b.across - a.across, m.turn_radius) + run;
         }
+        // Moving on from the block before (blocks are found across the field, so neighbours
+        // follow each other): a turn, and the way from its nearest corner to this block's.
+        let (Some(&first), Some(&last)) = (block.first(), block.last()) else {
+            continue;
+        };
+        let (f, l) = (&swaths[first].centre, &swaths[last].centre);
+        let corners = [f.start, f.end, l.start, l.end];
+        if let Some(before) = previous_corners {
+            let gap = before
+                .iter()
+                .flat_map(|p| corners.iter().map(move |q| (p.x - q.x).hypot(p.y - q.y)))
+                .fold(f64::INFINITY, f64::min);
+            stats.turn_count += 1;
+            stats.turning_distance_m += turn_length(width, m.turn_radius) + gap;
+        }
+        previous_corners = Some(corners);
     }
     stats.covered_area_m2 = covered_area(swaths, width, area);
     stats

@@ -7,15 +7,15 @@
 
 use crate::decompose::{cluster_swaths, Blocks};
 use crate::direction::{
-    choose_bearing, reference_direction, search_area, search_field, AreaSearch, DirectionMode,
-    DirectionRule,
+    choose_bearing, edge_directions, reference_direction, search_area, search_field, AreaSearch,
+    DirectionMode, DirectionRule,
 };
 use crate::error::{PlanError, Warning, WarningCode};
 use crate::field::simplify::tolerance_for_width;
 use crate::field::Field;
 use crate::geometry::forbids_every_direction;
 use crate::headland::edges::{passes_per_edge, EdgeRule};
-use crate::headland::offset::inset;
+use crate::headland::offset::inset_coarse;
 use crate::headland::{build, HeadlandSettings, Headlands};
 use crate::metrics::{summarise, DirectionFigures, DirectionReport, Summary};
 use crate::objective::{measure_all, ObjectiveValues};
@@ -118,6 +118,7 @@ pub(crate) fn plan_stages(
     };
     let mode = options.direction_mode()?;
     let mut evaluations = 0;
+    let mut search_cost = None;
     let mut placement = LinePlacement::FromEdge;
     let bearing = match mode {
         DirectionMode::Fixed => choose_bearing(
@@ -151,8 +152,10 @@ pub(crate) fn plan_stages(
         }
         DirectionMode::Search => {
             let area = search_region(&field, options);
-            let best = search_field(&area, &field.prohibited, forbidden, &search)?;
+            let seeds = edge_directions(std::iter::once(field.boundary.exterior()), width / 2.0);
+            let best = search_field(&area, &field.prohibited, forbidden, &seeds, &search)?;
             evaluations += best.evaluations;
+            search_cost = Some(best.cost);
             best.bearing
         }
     };
@@ -317,6 +320,7 @@ pub(crate) fn plan_stages(
         objective: objective.name(),
         evaluations,
         cost: objective.cost(&stats, &machine),
+        search_cost,
     };
     let summary = summarise(
         &field,
@@ -362,5 +366,11 @@ fn search_region(field: &Field, options: &PlanOptions) -> MultiPolygon {
         }
     }
     let region = MultiPolygon::new(vec![Polygon::new(field.boundary.exterior().clone(), holes)]);
-    inset(&region, options.headland_passes as f64 * options.width)
+    // Arcs to a twentieth of a width: the area is an estimate, and its points are what the
+    // search's sweeps cost.
+    inset_coarse(
+        &region,
+        options.headland_passes as f64 * options.width,
+        options.width / 20.0,
+    )
 }
