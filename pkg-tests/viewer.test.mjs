@@ -288,7 +288,7 @@ test("viewer: phone layout with touch, pinch zoom", { timeout: TIMEOUT }, async 
     await more.locator("summary").tap();
     assert.ok(await page.isVisible("#headlandMode"), "a tap unfolds the options");
     const targets = await page.evaluate(() =>
-      ["headlandMode", "headlandOrder", "obstacleThreshold"].map((id) => {
+      ["objective", "search", "headlandMode", "headlandOrder", "obstacleThreshold"].map((id) => {
         const r = document.getElementById(id).getBoundingClientRect();
         return [id, r.width, r.height];
       }),
@@ -320,7 +320,7 @@ test("viewer: obstacle classes, lifted swaths, headland only where needed", { ti
     // On a screen this short the options start folded, their values beside the title.
     const more = page.locator("#more-options");
     assert.equal(await more.getAttribute("open"), null, "folded on a short screen");
-    assert.equal(await page.textContent("#more-state"), "All around, last, 1 width");
+    assert.equal(await page.textContent("#more-state"), "All around, last, 1 width, shortest time");
     await more.locator("summary").click();
     assert.ok(await page.isVisible("#obstacleThreshold"), "a click unfolds them");
 
@@ -440,6 +440,47 @@ test("viewer: obstacle classes, lifted swaths, headland only where needed", { ti
     assert.equal(await page.inputValue("#headlandMode"), "needed");
     assert.equal(await page.inputValue("#headlandOrder"), "first");
     await page.screenshot({ path: join(SHOTS, "viewer-classes-needed.png") });
+  });
+});
+
+test("viewer: direction search, objective and the figures it reports", { timeout: TIMEOUT }, async () => {
+  await withViewer({ viewport: { width: 1280, height: 900 } }, async (page, base) => {
+    await page.goto(`${base}#h-shape`);
+    await ready(page);
+    assert.equal(await page.inputValue("#field"), "h-shape");
+    assert.equal(await page.inputValue("#objective"), "time");
+    assert.equal(await page.inputValue("#search"), "coarse-to-fine");
+    const dd = (key) => page.locator(`#summary dd[data-key=${key}]`);
+    const summary = () => page.evaluate(() => window.furrow.plan.summary);
+    // Searched by default, coarse to fine, for the shortest time.
+    let s = await summary();
+    assert.equal(s.direction.mode, "search");
+    assert.equal(s.direction.method, "coarse-to-fine");
+    assert.equal(s.direction.objective, "time");
+    assert.match(await dd("direction").innerText(), new RegExp(`searched, ${s.direction.evaluations} directions \\(coarse to fine\\)`));
+    assert.match(await dd("estimated_time_s").innerText(), /^\d+ (h \d\d )?min$/);
+    assert.equal(await dd("objectives").innerText(), `${(s.objectives.coverage * 100).toFixed(2)} %`);
+    // Every degree: more directions evaluated, a plan no slower by the objective.
+    await page.selectOption("#search", "brute-force");
+    await ready(page);
+    const brute = await summary();
+    assert.equal(brute.direction.method, "brute-force");
+    assert.ok(brute.direction.evaluations >= 180, `${brute.direction.evaluations} evaluations`);
+    assert.ok(brute.direction.search_cost <= s.direction.search_cost * 1.01);
+    // Fewest swaths: the objective reaches the planner and the summary.
+    await page.selectOption("#objective", "swath-count");
+    await ready(page);
+    s = await summary();
+    assert.equal(s.direction.objective, "swath-count");
+    assert.ok(Number.isInteger(s.direction.search_cost), "a count of swaths");
+    assert.equal(s.direction.cost, s.objectives.swath_count);
+    // A bearing given: not searched.
+    await setInput(page, "bearing", 30);
+    await ready(page);
+    s = await summary();
+    assert.equal(s.direction.mode, "fixed");
+    assert.equal(await dd("direction").innerText(), "as given");
+    assert.ok(Math.abs(s.bearing_deg - 30) < 1e-9);
   });
 });
 

@@ -334,7 +334,8 @@ export type WarningCode =
   | "straight_connections"
   | "implement_lifted"
   | "region_own_direction"
-  | "region_not_worked";
+  | "region_not_worked"
+  | "direction_not_searched";
 
 export interface PlanWarning {
   /** What the warning is about; see the README's warning reference. */

@@ -15,10 +15,11 @@ use crate::geometry::{
     bearing_of, deg_to_bearing, forbids_every_direction, swath_direction, BearingRange, SweepFrame,
 };
 use crate::headland::edges::drawn_edge_count;
+use crate::headland::offset::inset_coarse;
 use crate::objective::{measure, Machine, Objective, SwathStats};
 use crate::prohibited::{forbidding, split};
 use crate::swath::{generate_with, LinePlacement, SwathSettings};
-use geo::{Coord, LineString, MultiPolygon, Simplify};
+use geo::{BoundingRect, Coord, LineString, MultiPolygon, Polygon, Simplify};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
 
@@ -344,6 +345,44 @@ fn edges_longest_first(ring: &LineString, tolerance_m: f64) -> Vec<(f64, f64)> {
         .collect();
     edges.sort_by(|a, b| b.0.total_cmp(&a.0));
     edges
+}
+
+/// The area the direction search measures: the field less its obstacles (but those too small
+/// to split it at any direction: narrower than `obstacle_threshold` every way) and less a
+/// constant headland `headland_depth` deep. The planner's headland may depend on the direction
+/// (in `needed` mode, and through the obstacle classes); measuring every candidate on one area
+/// keeps the search to one offset. Its arcs are held to a twentieth of the width: the area is an
+/// estimate, and its points are what the search's sweeps cost.
+///
+/// ```
+/// use furrow::direction::search_region;
+/// use furrow::field::Field;
+/// use geo::Area;
+///
+/// let text = r#"{"type": "Polygon", "coordinates": [[[0, 0], [100, 0], [100, 60], [0, 60], [0, 0]]]}"#;
+/// let (field, _) = Field::from_geojson_str_in(text, furrow::field::Coordinates::Metric)?;
+/// let area = search_region(&field, 6.0, 12.0, 6.0);
+/// assert!((area.unsigned_area() - 76.0 * 36.0).abs() < 1e-6);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn search_region(
+    field: &Field,
+    obstacle_threshold: f64,
+    headland_depth: f64,
+    width: f64,
+) -> MultiPolygon {
+    let mut holes = field.boundary.interiors().to_vec();
+    for o in &field.obstacles {
+        let diagonal = o
+            .polygon
+            .bounding_rect()
+            .map_or(0.0, |r| r.width().hypot(r.height()));
+        if diagonal >= obstacle_threshold {
+            holes.push(o.polygon.exterior().clone());
+        }
+    }
+    let region = MultiPolygon::new(vec![Polygon::new(field.boundary.exterior().clone(), holes)]);
+    inset_coarse(&region, headland_depth, width / 20.0)
 }
 
 /// What the direction search of an area needs besides the area.

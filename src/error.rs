@@ -253,6 +253,9 @@ pub enum WarningCode {
     RegionOwnDirection,
     /// The forbidden ranges leave a prohibited region no direction: it gets no swaths.
     RegionNotWorked,
+    /// The field has too many swaths at this width to search every direction while the user
+    /// waits: the swaths run along the longest edge.
+    DirectionNotSearched,
 }
 
 impl WarningCode {
@@ -274,6 +277,7 @@ impl WarningCode {
         WarningCode::ImplementLifted,
         WarningCode::RegionOwnDirection,
         WarningCode::RegionNotWorked,
+        WarningCode::DirectionNotSearched,
     ];
 
     /// The code as it appears in JSON.
@@ -295,6 +299,7 @@ impl WarningCode {
             WarningCode::ImplementLifted => "implement_lifted",
             WarningCode::RegionOwnDirection => "region_own_direction",
             WarningCode::RegionNotWorked => "region_not_worked",
+            WarningCode::DirectionNotSearched => "direction_not_searched",
         }
     }
 }

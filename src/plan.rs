@@ -7,15 +7,14 @@
 
 use crate::decompose::{cluster_swaths, Blocks};
 use crate::direction::{
-    choose_bearing, edge_directions, reference_direction, search_area, search_field, AreaSearch,
-    DirectionMode, DirectionRule,
+    choose_bearing, edge_directions, reference_direction, search_area, search_field, search_region,
+    AreaSearch, DirectionMode, DirectionRule, SearchMethod,
 };
 use crate::error::{PlanError, Warning, WarningCode};
 use crate::field::simplify::tolerance_for_width;
 use crate::field::Field;
 use crate::geometry::forbids_every_direction;
 use crate::headland::edges::{passes_per_edge, EdgeRule};
-use crate::headland::offset::inset_coarse;
 use crate::headland::{build, HeadlandSettings, Headlands};
 use crate::metrics::{summarise, DirectionFigures, DirectionReport, Summary};
 use crate::objective::{measure_all, ObjectiveValues};
@@ -25,8 +24,12 @@ use crate::path::{build_path, Path};
 use crate::prohibited::{forbidding, split};
 use crate::route::{boustrophedon, Route};
 use crate::swath::{generate_with, lifts, LinePlacement, SwathArea, SwathSettings, Swaths};
-use geo::{BoundingRect, MultiPolygon, Polygon};
+use geo::BoundingRect;
 use web_time::Instant;
+
+/// Most swath lines times directions a direction search may sweep (about a third of a second
+/// natively); beyond it the direction follows the longest edge.
+pub const SEARCH_BUDGET_LINES: f64 = 250_000.0;
 
 /// A coverage plan and everything the stages found on the way to it.
 #[derive(Debug, Clone)]
@@ -116,7 +119,29 @@ pub(crate) fn plan_stages(
         machine: options.machine(),
         objective: objective.as_ref(),
     };
-    let mode = options.direction_mode()?;
+    let mut mode = options.direction_mode()?;
+    if mode == DirectionMode::Search {
+        // Each evaluation sweeps every swath line: beyond a budget the search would keep the
+        // user waiting for seconds, so the swaths follow the longest edge instead.
+        let lines = field
+            .boundary
+            .bounding_rect()
+            .map_or(0.0, |r| r.width().hypot(r.height()))
+            / width;
+        let evaluations = match options.search {
+            SearchMethod::BruteForce => 180.0 / options.search_step_deg + 8.0,
+            SearchMethod::CoarseToFine => 40.0,
+        };
+        if lines * evaluations > SEARCH_BUDGET_LINES {
+            mode = DirectionMode::LongestEdge;
+            warnings.push(Warning::new(
+                WarningCode::DirectionNotSearched,
+                format!(
+                    "at {width} m the field has up to {lines:.0} swath lines, too many to search {evaluations:.0} directions quickly; the swaths run along the longest edge"
+                ),
+            ));
+        }
+    }
     let mut evaluations = 0;
     let mut search_cost = None;
     let mut placement = LinePlacement::FromEdge;
@@ -151,7 +176,12 @@ pub(crate) fn plan_stages(
             b
         }
         DirectionMode::Search => {
-            let area = search_region(&field, options);
+            let area = search_region(
+                &field,
+                options.obstacle_threshold_m(),
+                options.headland_passes as f64 * width,
+                width,
+            );
             let seeds = edge_directions(std::iter::once(field.boundary.exterior()), width / 2.0);
             let best = search_field(&area, &field.prohibited, forbidden, &seeds, &search)?;
             evaluations += best.evaluations;
@@ -347,30 +377,4 @@ pub(crate) fn plan_stages(
         summary,
         warnings,
     })
-}
-
-/// The area the direction search measures: the field less its obstacles (but those too small to
-/// split it at any direction) and less a constant headland. The planner's headland may depend on
-/// the direction (in `needed` mode, and through the obstacle classes); measuring every candidate
-/// on one area keeps the search to one offset.
-fn search_region(field: &Field, options: &PlanOptions) -> MultiPolygon {
-    let threshold = options.obstacle_threshold_m();
-    let mut holes = field.boundary.interiors().to_vec();
-    for o in &field.obstacles {
-        let diagonal = o
-            .polygon
-            .bounding_rect()
-            .map_or(0.0, |r| r.width().hypot(r.height()));
-        if diagonal >= threshold {
-            holes.push(o.polygon.exterior().clone());
-        }
-    }
-    let region = MultiPolygon::new(vec![Polygon::new(field.boundary.exterior().clone(), holes)]);
-    // Arcs to a twentieth of a width: the area is an estimate, and its points are what the
-    // search's sweeps cost.
-    inset_coarse(
-        &region,
-        options.headland_passes as f64 * options.width,
-        options.width / 20.0,
-    )
 }

@@ -4,7 +4,9 @@
 //!
 //! The regular suite runs a few hundred cases; set PROPTEST_CASES for a long run.
 
+use furrow::direction::{DirectionMode, SearchMethod};
 use furrow::headland::{HeadlandMode, HeadlandOrder};
+use furrow::objective::ObjectiveKind;
 use furrow::{plan_geojson, ErrorCode, PlanOptions};
 use proptest::prelude::*;
 
@@ -44,6 +46,11 @@ fn options() -> impl Strategy<Value = PlanOptions> {
         prop::option::of(0.0..50.0f64),
         any::<(bool, bool)>(),
         prop::option::of(0.0..40.0f64),
+        (
+            0usize..7,
+            0usize..4,
+            prop::option::of((0usize..6, -20.0..20.0f64)),
+        ),
     )
         .prop_map(
             |(
@@ -54,7 +61,30 @@ fn options() -> impl Strategy<Value = PlanOptions> {
                 min_swath_length,
                 (needed, first),
                 obstacle_threshold,
+                (objective, rule, reference),
             )| PlanOptions {
+                objective: [
+                    ObjectiveKind::Time,
+                    ObjectiveKind::SwathCount,
+                    ObjectiveKind::SwathLength,
+                    ObjectiveKind::Coverage,
+                    ObjectiveKind::Overlap,
+                    ObjectiveKind::TurnCount,
+                    ObjectiveKind::Oksanen,
+                ][objective],
+                search: if rule == 1 {
+                    SearchMethod::BruteForce
+                } else {
+                    SearchMethod::CoarseToFine
+                },
+                search_step_deg: 7.0,
+                direction: match (rule, bearing_deg, reference) {
+                    (2, _, _) => Some(DirectionMode::LongestEdge),
+                    (3, None, Some(_)) => Some(DirectionMode::Reference),
+                    _ => None,
+                },
+                reference_edge: reference.filter(|_| bearing_deg.is_none()).map(|r| r.0),
+                reference_offset: reference.map(|r| r.1),
                 width,
                 headland_passes,
                 turn_radius,

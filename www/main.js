@@ -31,8 +31,10 @@ const OPTION_INPUTS = [
   "headlandMode",
   "headlandOrder",
   "obstacleThreshold",
+  "objective",
+  "search",
 ];
-const CHOICES = new Set(["headlandMode", "headlandOrder"]); // <select>s: their value is the option
+const CHOICES = new Set(["headlandMode", "headlandOrder", "objective", "search"]); // <select>s: their value is the option
 const OPTIONAL = new Set(["bearing", "obstacleThreshold"]); // empty: null, the planner's default
 const OPENED = ":opened"; // value of the field picker's entry for an opened file
 const MAX_FILE_BYTES = 64 * 1024 * 1024; // the planner refuses more than 32 MB anyway
@@ -373,7 +375,7 @@ function readOptions() {
   return { options, problems };
 }
 
-/** The folded options' values, beside their title: "All around, last, 6 m". */
+/** The folded options' values, beside their title: "All around, last, 6 m, shortest time". */
 function showMoreState() {
   const text = (id) => ui.inputs[id].selectedOptions?.[0]?.textContent ?? "";
   const threshold = ui.inputs.obstacleThreshold.value.trim();
@@ -381,6 +383,7 @@ function showMoreState() {
     text("headlandMode"),
     text("headlandOrder").replace(/ \(.*\)$/, "").toLowerCase(),
     threshold === "" ? "1 width" : `${threshold} m`,
+    text("objective").toLowerCase(),
   ].join(", ");
 }
 
@@ -601,6 +604,21 @@ function renderSummary(s, options, callMs) {
       : []),
     ["Swath bearing", bearing, { key: "bearing_deg" }],
     [
+      "Direction",
+      directionText(s.direction),
+      { key: "direction", title: "How the direction was chosen, and the cost of the plan's swaths" },
+    ],
+    [
+      "Coverage",
+      `${formatNumber(num(s.objectives?.coverage) * 100, 2)} %`,
+      { key: "objectives", title: "Share of the inner field the swaths' strips cover" },
+    ],
+    [
+      "Estimated time",
+      duration(s.estimated_time_s),
+      { key: "estimated_time_s", title: "Swaths and headland at working speed, turns and connections at turning speed" },
+    ],
+    [
       "Planning time",
       `${formatNumber(s.planning_ms ?? 0, 2)} ms`,
       { key: "planning_ms", title: `${formatNumber(callMs, 2)} ms with the GeoJSON conversion` },
@@ -621,6 +639,27 @@ function renderSummary(s, options, callMs) {
       return [dt, dd];
     }),
   );
+}
+
+/** How the direction was chosen, in words: "searched, 36 directions (coarse to fine)". */
+function directionText(d) {
+  if (!d) return "–";
+  switch (d.mode) {
+    case "search":
+      return `searched, ${d.evaluations} directions (${d.method === "brute-force" ? "every degree" : "coarse to fine"})`;
+    case "fixed":
+      return "as given";
+    case "reference":
+      return "along the reference";
+    default:
+      return "along the longest edge";
+  }
+}
+
+/** Seconds as "1 h 05 min" or "12 min". */
+function duration(seconds) {
+  const min = Math.round((Number.isFinite(seconds) ? seconds : 0) / 60);
+  return min >= 60 ? `${Math.floor(min / 60)} h ${String(min % 60).padStart(2, "0")} min` : `${min} min`;
 }
 
 /** "A1 B1 C2 D1", each class in the tag the map labels obstacles with. */
