@@ -444,3 +444,61 @@ proptest! {
         }
     }
 }
+
+#[test]
+fn a_region_left_no_direction_gets_no_swaths_and_a_warning() {
+    // Underdrain's first region forbids 350-10 (and 170-190); with 10-170 forbidden everywhere,
+    // the field runs at 5 degrees, which the region forbids, and nothing is left for the region.
+    let field = valid_fields()
+        .into_iter()
+        .find(|f| f.name == "underdrain")
+        .expect("corpus field");
+    let options = PlanOptions {
+        bearing_deg: Some(5.0),
+        forbidden_bearings_deg: vec![BearingRange {
+            from_deg: 10.0,
+            to_deg: 170.0,
+        }],
+        ..field.options.clone()
+    };
+    let plan = plan_corpus(&field, &options);
+    check_swaths(&plan, "underdrain");
+    let w = plan
+        .warnings
+        .iter()
+        .find(|w| w.code == furrow::WarningCode::RegionNotWorked)
+        .expect("a region_not_worked warning");
+    assert!(w.feature.is_some());
+    assert!(plan.swaths.areas.iter().all(|a| a.region.is_none()));
+}
+
+#[test]
+fn too_many_swath_lines_to_search_follow_the_longest_edge() {
+    // 2 km x 300 m worked 0.2 m wide: 10,000 lines at most, times 40 directions, over budget.
+    let text = r#"{"type": "Polygon", "coordinates": [[[0, 0], [2000, 0], [2000, 300], [0, 300], [0, 0]]]}"#;
+    let options = PlanOptions {
+        width: 0.2,
+        headland_passes: 1,
+        turn_radius: 0.5,
+        coordinates: furrow::field::Coordinates::Metric,
+        ..PlanOptions::default()
+    };
+    let plan = plan_geojson(text, &options).expect("plans");
+    assert_eq!(plan.summary.direction.mode, DirectionMode::LongestEdge);
+    assert_eq!(plan.summary.direction.evaluations, 0);
+    assert!((plan.summary.bearing_deg - 90.0).abs() < 1e-9);
+    assert!(plan
+        .warnings
+        .iter()
+        .any(|w| w.code == furrow::WarningCode::DirectionNotSearched));
+    // At 6 m the same field is searched.
+    let wide = plan_geojson(
+        text,
+        &PlanOptions {
+            width: 6.0,
+            ..options
+        },
+    )
+    .expect("plans");
+    assert_eq!(wide.summary.direction.mode, DirectionMode::Search);
+}
