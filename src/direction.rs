@@ -72,9 +72,10 @@ const RANGE_CLEARANCE_DEG: f64 = 1e-3;
 /// use furrow::geometry::BearingRange;
 ///
 /// let drains = [BearingRange { from_deg: 20.0, to_deg: 70.0 }];
-/// let b = nearest_allowed(60f64.to_radians(), &drains).unwrap().to_degrees();
-/// assert!((b - 70.0).abs() < 0.01);
+/// let b = nearest_allowed(60f64.to_radians(), &drains).ok_or("no direction left")?;
+/// assert!((b.to_degrees() - 70.0).abs() < 0.01);
 /// assert_eq!(nearest_allowed(2.0, &drains), Some(2.0));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn nearest_allowed(bearing: f64, forbidden: &[BearingRange]) -> Option<f64> {
     let b = swath_direction(bearing);
