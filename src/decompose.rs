@@ -7,6 +7,8 @@
 //! is the other's only overlapping neighbour; a split or a merge of pieces starts new blocks.
 //! Each block's outline is the strip its swaths cover.
 
+pub mod cells;
+
 use crate::field::ring::clean_ring;
 use crate::swath::{Swath, Swaths};
 use geo::{LineString, Polygon};
