@@ -244,6 +244,59 @@ pub fn merge(trapezoids: &[Trapezoid], frame: &SweepFrame, rule: MergeRule) -> V
     cells
 }
 
+/// Cells that touch along a slab line, as `(left cell, right cell, length of the shared
+/// stretch)`: the adjacency graph of the decomposition (Zhou et al. fig. 7), over which blocks
+/// are merged and routes pass from one block to the next.
+///
+/// ```
+/// use furrow::decompose::cells::{adjacency, merge, split, MergeRule};
+/// use furrow::geometry::SweepFrame;
+/// use geo::{polygon, MultiPolygon};
+///
+/// // A square with a hole: the cell left of the hole touches the cells below and above it,
+/// // and so does the cell right of it; below and above do not touch.
+/// let field = polygon!(
+///     exterior: [(x: 0., y: 0.), (x: 10., y: 0.), (x: 10., y: 10.), (x: 0., y: 10.)],
+///     interiors: [[(x: 4., y: 4.), (x: 6., y: 4.), (x: 6., y: 6.), (x: 4., y: 6.)]],
+/// );
+/// let frame = SweepFrame::new(0.0);
+/// let t = split(&MultiPolygon::new(vec![field]), &frame);
+/// let cells = merge(&t, &frame, MergeRule::Boustrophedon);
+/// let edges = adjacency(&t, &cells);
+/// assert_eq!(edges.len(), 4);
+/// assert!(edges.iter().all(|&(_, _, shared)| (shared - 4.0).abs() < 1e-9));
+/// ```
+pub fn adjacency(trapezoids: &[Trapezoid], cells: &[Cell]) -> Vec<(usize, usize, f64)> {
+    let mut cell_of = vec![usize::MAX; trapezoids.len()];
+    for (c, cell) in cells.iter().enumerate() {
+        for &t in &cell.trapezoids {
+            if let Some(slot) = cell_of.get_mut(t) {
+                *slot = c;
+            }
+        }
+    }
+    let mut out: Vec<(usize, usize, f64)> = Vec::new();
+    for (i, t) in trapezoids.iter().enumerate() {
+        for (j, u) in trapezoids.iter().enumerate().skip(i + 1) {
+            if u.slab > t.slab + 1 {
+                break;
+            }
+            if u.slab != t.slab + 1 || (u.across.0 - t.across.1).abs() > SAME_LINE_M {
+                continue;
+            }
+            let shared = t.upper.1.min(u.upper.0) - t.lower.1.max(u.lower.0);
+            let (a, b) = (cell_of[i], cell_of[j]);
+            if shared > MATCH_M && a != b {
+                match out.iter_mut().find(|e| e.0 == a && e.1 == b) {
+                    Some(e) => e.2 += shared,
+                    None => out.push((a, b, shared)),
+                }
+            }
+        }
+    }
+    out
+}
+
 /// The outline of a chain of trapezoids: along the lower ends left to right, back along the
 /// upper ends.
 fn outline(trapezoids: &[Trapezoid], chain: &[usize], frame: &SweepFrame) -> Polygon {
@@ -376,6 +429,23 @@ mod tests {
             let cells = merge(&t, &frame, rule);
             let sum: f64 = cells.iter().map(|c| c.outline.unsigned_area()).sum();
             prop_assert!((sum - area).abs() < 1e-6 * area, "{} vs {}", sum, area);
+            // The field is one piece, so its cells form one connected graph.
+            let edges = adjacency(&t, &cells);
+            let mut reached = vec![false; cells.len()];
+            reached[0] = true;
+            let mut changed = true;
+            while changed {
+                changed = false;
+                for &(a, b, shared) in &edges {
+                    prop_assert!(a != b && a < cells.len() && b < cells.len() && shared > 0.0);
+                    if reached[a] != reached[b] {
+                        reached[a] = true;
+                        reached[b] = true;
+                        changed = true;
+                    }
+                }
+            }
+            prop_assert!(reached.iter().all(|&r| r), "cells not connected: {:?}", edges);
             for (i, a) in cells.iter().enumerate() {
                 for b in &cells[i + 1..] {
                     let overlap = MultiPolygon::new(vec![a.outline.clone()])
