@@ -83,23 +83,29 @@ pub fn nearest_allowed(bearing: f64, forbidden: &[BearingRange]) -> Option<f64> 
         return Some(b);
     }
     let mut best: Option<(f64, f64)> = None;
-    for r in forbidden {
-        for end in [
-            r.from_deg - RANGE_CLEARANCE_DEG,
-            r.to_deg + RANGE_CLEARANCE_DEG,
-        ] {
-            let e = swath_direction(end.to_radians());
-            if forbidden.iter().any(|q| q.forbids(e)) {
-                continue;
-            }
-            let d = (e - b).rem_euclid(PI);
-            let d = d.min(PI - d);
-            if best.is_none_or(|(bd, _)| d < bd) {
-                best = Some((d, e));
-            }
+    for e in allowed_range_ends(forbidden) {
+        let d = (e - b).rem_euclid(PI);
+        let d = d.min(PI - d);
+        if best.is_none_or(|(bd, _)| d < bd) {
+            best = Some((d, e));
         }
     }
     best.map(|(_, e)| e)
+}
+
+/// The swath directions just outside the ends of the forbidden ranges that no range forbids:
+/// where a constrained optimum often lies, and the allowed directions nearest a forbidden one.
+fn allowed_range_ends(forbidden: &[BearingRange]) -> impl Iterator<Item = f64> + '_ {
+    forbidden
+        .iter()
+        .flat_map(|r| {
+            [
+                r.from_deg - RANGE_CLEARANCE_DEG,
+                r.to_deg + RANGE_CLEARANCE_DEG,
+            ]
+        })
+        .map(|end| swath_direction(end.to_radians()))
+        .filter(|&e| !forbidden.iter().any(|q| q.forbids(e)))
 }
 
 /// Searches the swath directions not in `forbidden` for the lowest `cost` (a function of the
@@ -160,16 +166,8 @@ pub fn search_direction(
                     eval(b, &mut evaluated);
                 }
             }
-            for r in forbidden {
-                for end in [
-                    r.from_deg - RANGE_CLEARANCE_DEG,
-                    r.to_deg + RANGE_CLEARANCE_DEG,
-                ] {
-                    let b = swath_direction(end.to_radians());
-                    if allowed(b) {
-                        eval(b, &mut evaluated);
-                    }
-                }
+            for b in allowed_range_ends(forbidden) {
+                eval(b, &mut evaluated);
             }
         }
         SearchMethod::CoarseToFine => {
@@ -274,16 +272,12 @@ pub fn choose_bearing(
             }
             // No edge runs in an allowed direction: the allowed direction nearest the longest.
             let longest = edges.first().map_or(0.0, |e| e.1);
-            (1..=1800)
-                .flat_map(|k| [k as f64, -(k as f64)])
-                .map(|k| swath_direction(longest + (k * 0.1).to_radians()))
-                .find(|&b| allowed(b))
-                .ok_or_else(|| {
-                    PlanError::new(
-                        ErrorCode::NoAllowedDirection,
-                        "the forbidden bearing ranges forbid every driving direction",
-                    )
-                })
+            nearest_allowed(longest, forbidden).ok_or_else(|| {
+                PlanError::new(
+                    ErrorCode::NoAllowedDirection,
+                    "the forbidden bearing ranges forbid every driving direction",
+                )
+            })
         }
     }
 }
@@ -672,7 +666,7 @@ mod tests {
         ];
         let rule = DirectionRule::LongestEdge { tolerance_m: 1.0 };
         let b = choose_bearing(&f, rule, &forbidden).unwrap().to_degrees();
-        assert!((b - 100.1).abs() < 0.01, "{b}");
+        assert!((b - 100.0).abs() < 0.01, "{b}");
     }
 
     #[test]

@@ -452,14 +452,14 @@ fn covered_area(swaths: &[Swath], width: f64, area: &MultiPolygon) -> f64 {
     covered
 }
 
-/// Total length of the overlap of two sorted lists of disjoint intervals.
-fn overlap_length(a: &[(f64, f64)], b: &[(f64, f64)]) -> f64 {
-    let (mut i, mut j, mut sum) = (0, 0, 0.0);
+/// Calls `f(lo, hi)` for every overlap of two sorted lists of disjoint intervals, in order.
+fn for_each_overlap(a: &[(f64, f64)], b: &[(f64, f64)], mut f: impl FnMut(f64, f64)) {
+    let (mut i, mut j) = (0, 0);
     while i < a.len() && j < b.len() {
         let lo = a[i].0.max(b[j].0);
         let hi = a[i].1.min(b[j].1);
         if hi > lo {
-            sum += hi - lo;
+            f(lo, hi);
         }
         if a[i].1 < b[j].1 {
             i += 1;
@@ -467,25 +467,19 @@ fn overlap_length(a: &[(f64, f64)], b: &[(f64, f64)]) -> f64 {
             j += 1;
         }
     }
+}
+
+/// Total length of the overlap of two sorted lists of disjoint intervals.
+fn overlap_length(a: &[(f64, f64)], b: &[(f64, f64)]) -> f64 {
+    let mut sum = 0.0;
+    for_each_overlap(a, b, |lo, hi| sum += hi - lo);
     sum
 }
 
 /// Length of the overlap of three sorted lists of disjoint intervals.
 fn overlap3(a: &[(f64, f64)], b: &[(f64, f64)], c: &[(f64, f64)]) -> f64 {
     let mut ab = Vec::new();
-    let (mut i, mut j) = (0, 0);
-    while i < a.len() && j < b.len() {
-        let lo = a[i].0.max(b[j].0);
-        let hi = a[i].1.min(b[j].1);
-        if hi > lo {
-            ab.push((lo, hi));
-        }
-        if a[i].1 < b[j].1 {
-            i += 1;
-        } else {
-            j += 1;
-        }
-    }
+    for_each_overlap(a, b, |lo, hi| ab.push((lo, hi)));
     overlap_length(&ab, c)
 }
 
