@@ -288,7 +288,7 @@ test("viewer: phone layout with touch, pinch zoom", { timeout: TIMEOUT }, async 
     await more.locator("summary").tap();
     assert.ok(await page.isVisible("#headlandMode"), "a tap unfolds the options");
     const targets = await page.evaluate(() =>
-      ["objective", "search", "headlandMode", "headlandOrder", "obstacleThreshold"].map((id) => {
+      ["objective", "decomposition", "search", "headlandMode", "headlandOrder", "obstacleThreshold"].map((id) => {
         const r = document.getElementById(id).getBoundingClientRect();
         return [id, r.width, r.height];
       }),
@@ -474,6 +474,27 @@ test("viewer: direction search, objective and the figures it reports", { timeout
     assert.equal(s.direction.objective, "swath-count");
     assert.ok(Number.isInteger(s.direction.search_cost), "a count of swaths");
     assert.equal(s.direction.cost, s.objectives.swath_count);
+    // Blocks: by default the fastest decomposition; on the H its arms and cross block each get
+    // their own direction. One direction for all is slower, and the summary says which is used.
+    await page.selectOption("#objective", "time");
+    await ready(page);
+    assert.equal(await page.inputValue("#decomposition"), "auto");
+    s = await summary();
+    assert.equal(s.decomposition.requested, "auto");
+    assert.equal(s.decomposition.method, "split-merge");
+    assert.equal(s.decomposition.candidates.length, 3);
+    // The arms north-south (drawn a degree or so apart, each worked along its own edges) and the
+    // cross block east-west.
+    assert.match(await dd("decomposition").innerText(), /^Direction per block, [23] directions \(fastest; /);
+    const decomposed = s.estimated_time_s;
+    await page.selectOption("#decomposition", "none");
+    await ready(page);
+    s = await summary();
+    assert.equal(s.decomposition.method, "none");
+    assert.equal(await dd("decomposition").innerText(), "One direction");
+    assert.ok(s.estimated_time_s > decomposed, `one direction ${s.estimated_time_s} s, blocks ${decomposed} s`);
+    await page.selectOption("#decomposition", "auto");
+    await ready(page);
     // A bearing given: not searched.
     await setInput(page, "bearing", 30);
     await ready(page);

@@ -49,6 +49,15 @@ export type DirectionMode = "search" | "longest-edge" | "fixed" | "reference";
 export type SearchMethod = "coarse-to-fine" | "brute-force";
 
 /**
+ * How the inner field is cut into blocks: `"none"`, one direction, swaths clustered into blocks
+ * where obstacles and bays break the lines; `"boustrophedon"`, one direction, Zhou et al.'s
+ * boustrophedon cells; `"split-merge"`, Oksanen & Visala's split and merge, each block with its
+ * own searched direction (only with the direction searched); `"auto"`, the one of lowest
+ * estimated operation time.
+ */
+export type Decomposition = "none" | "boustrophedon" | "split-merge" | "auto";
+
+/**
  * What the direction search minimises: `"time"`, estimated operation time (swaths, turns by the
  * turn model, and uncovered area); `"swath-count"`; `"swath-length"` (total); `"coverage"` (the
  * uncovered share); `"overlap"` (area worked twice or over the edge); `"turn-count"`;
@@ -141,6 +150,11 @@ export interface PlanOptions {
   minSwathLength?: number | null;
   /** Coordinates of the input and the plan. Default `"wgs84"` (longitude, latitude). */
   coordinates?: "wgs84" | "metric";
+  /**
+   * How the inner field is cut into blocks. Default `"auto"`: none, boustrophedon and (when the
+   * direction is searched) split and merge are all planned, and the fastest kept.
+   */
+  decomposition?: Decomposition;
 }
 
 /** What a plan feature is. */
@@ -204,8 +218,11 @@ export interface PlanFeatureProperties {
   group?: number;
   /** For an obstacle group: the indices of the obstacles merged into it (its convex hull). */
   members?: number[];
-  /** What a headland pass runs around: the field boundary or an obstacle (or obstacle group). */
-  around?: "field" | "obstacle";
+  /**
+   * What a headland pass runs around: the field boundary, an obstacle (or obstacle group), or
+   * (`"block"`) the border between two blocks where both blocks' swaths end.
+   */
+  around?: "field" | "obstacle" | "block";
   /**
    * Whether a headland pass is a closed loop (its last point repeats its first). In `"needed"`
    * mode the passes along the field edges are open lines.
@@ -265,15 +282,17 @@ export interface PlanSummary {
   /** Number of obstacles of each class. */
   obstacle_classes: ObstacleClassCounts;
   dropped_swath_count: number;
-  /** Swath direction, compass degrees in [0, 180). */
+  /** Swath direction, compass degrees in [0, 180): with split and merge, the first block's. */
   bearing_deg: number;
   /** How the direction was chosen. */
   direction: DirectionReport;
   /** Every objective's value for the plan's swaths, turns by the turn model. */
   objectives: ObjectiveValues;
+  /** How the inner field was cut into blocks, and the decompositions compared. */
+  decomposition: DecompositionReport;
   /**
-   * Estimated operation time, seconds: swaths and headland passes at working speed, turns (by the
-   * turn model) and connections at turning speed.
+   * Estimated operation time, seconds: swaths and headland passes at working speed; turns within
+   * blocks (by the turn model) and connections (each its length and a turn) at turning speed.
    */
   estimated_time_s: number;
   /** Time the planner took, milliseconds. */
@@ -296,6 +315,40 @@ export interface DirectionReport {
    * headland); `null` when the direction was not searched.
    */
   search_cost: number | null;
+}
+
+/** How the inner field was cut into blocks. */
+export interface DecompositionReport {
+  /** What the `decomposition` option asked for. */
+  requested: Decomposition;
+  /** What the plan uses: for `"auto"`, the candidate of lowest estimated operation time. */
+  method: Exclude<Decomposition, "auto">;
+  /** Why, in words, with the time of each candidate. */
+  reason: string;
+  /** Every decomposition planned. */
+  candidates: DecompositionCandidate[];
+}
+
+/** The figures of one decomposition planned. */
+export interface DecompositionCandidate {
+  method: Exclude<Decomposition, "auto">;
+  block_count: number;
+  /** The blocks' swath directions, compass degrees in [0, 180), each once. */
+  bearings_deg: number[];
+  swath_count: number;
+  /** Turns within blocks. */
+  turn_count: number;
+  /** Headland passes along borders between blocks. */
+  block_headland_passes: number;
+  /** Estimated operation time, seconds. */
+  estimated_time_s: number;
+  /**
+   * Inner field area its swaths leave uncovered, square metres; counted as if worked at working
+   * speed when the decompositions are compared.
+   */
+  uncovered_area_m2: number;
+  /** Directions split and merge evaluated for its blocks (0 for the others). */
+  evaluations: number;
 }
 
 /** The objectives' values for a plan's swaths. */

@@ -1,17 +1,67 @@
-//! Blocks: groups of neighbouring swaths worked one after the other, turning in the headland.
+//! Decomposition: the inner field cut into blocks, each worked at one direction, and the swaths
+//! grouped into blocks that can be worked one after the other, turning in the headland.
 //!
-//! Where an obstacle or a bay interrupts the swath lines, swaths on one side of it cannot be
-//! joined to swaths on the other by a turn at their ends. This stage clusters swaths into blocks
-//! as Zhou et al. (2.3) do after their boustrophedon decomposition: walking across the field line
-//! by line, a swath continues the block of the swath next to it on the previous line when each
-//! is the other's only overlapping neighbour; a split or a merge of pieces starts new blocks.
-//! Each block's outline is the strip its swaths cover.
+//! Three ways to cut the field ([`Decomposition`]):
+//!
+//! - none: one direction for the whole inner field; where an obstacle or a bay interrupts the
+//!   swath lines, the swaths are clustered into blocks line by line ([`cluster_swaths`]);
+//! - boustrophedon ([`boustrophedon`], Zhou et al. 2.3): one direction, the inner field swept
+//!   into cells that break only where the sweep meets or leaves an obstacle or a bay, and the
+//!   swaths clustered into the cells;
+//! - split-and-merge ([`split_merge`], Oksanen & Visala 2): blocks chosen one by one, each with
+//!   its own best direction, so that a bay or an arm of the field is worked along its length.
+//!
+//! Auto plans all three and keeps the one of lowest estimated operation time. Both
+//! decompositions rest on the trapezoidal split of [`cells`]; [`block_headlands`] adds headland
+//! passes between blocks where both blocks' swaths end at their common border.
 
+pub mod block_headlands;
+pub mod boustrophedon;
 pub mod cells;
+pub mod join;
+pub mod redirect;
+pub mod split_merge;
 
 use crate::field::ring::clean_ring;
 use crate::swath::{Swath, Swaths};
-use geo::{LineString, Polygon};
+use geo::{LineString, MultiPolygon, Polygon};
+use serde::{Deserialize, Serialize};
+
+/// How the inner field is cut into blocks (the `decomposition` option).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Decomposition {
+    /// One direction; swaths clustered into blocks where obstacles and bays break the lines.
+    None,
+    /// One direction; Zhou et al.'s boustrophedon cells.
+    Boustrophedon,
+    /// Oksanen & Visala's split and merge: blocks with a direction each.
+    SplitMerge,
+    /// Whichever of the three gives the lowest estimated operation time.
+    #[default]
+    Auto,
+}
+
+impl Decomposition {
+    /// The name, as the options spell it.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Decomposition::None => "none",
+            Decomposition::Boustrophedon => "boustrophedon",
+            Decomposition::SplitMerge => "split-merge",
+            Decomposition::Auto => "auto",
+        }
+    }
+}
+
+/// A part of the inner field worked at one direction: a block of a decomposition.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BlockArea {
+    /// Its area.
+    pub area: MultiPolygon,
+    /// Its swath direction, compass radians in `[0, π)`.
+    pub bearing: f64,
+}
 
 /// A block: swaths on consecutive lines, each overlapping the next along the line.
 #[derive(Debug, Clone, PartialEq)]
@@ -33,7 +83,11 @@ pub struct Blocks {
     pub blocks: Vec<Block>,
 }
 
-/// Clusters swaths into blocks.
+/// Clusters swaths into blocks: within each area of [`Swaths::areas`] (all swaths as one area
+/// when it is empty), walking across line by line, a swath continues the block of the swath
+/// next to it on the previous line when each is the other's only overlapping neighbour; a split
+/// or a merge of pieces starts new blocks. A block's outline is its area's, when the area is one
+/// polygon holding one block, else the staircase of strips its swaths cover.
 ///
 /// ```
 /// use furrow::decompose::cluster_swaths;
@@ -54,16 +108,36 @@ pub struct Blocks {
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn cluster_swaths(swaths: &Swaths) -> Blocks {
-    let blocks = block_members(&swaths.swaths)
-        .into_iter()
-        .enumerate()
-        .map(|(index, ids)| Block {
-            index,
-            outline: outline(swaths, &ids),
-            bearing: swaths.swaths[ids[0]].bearing,
-            swaths: ids,
-        })
-        .collect();
+    let ranges: Vec<(std::ops::Range<usize>, Option<&MultiPolygon>)> = if swaths.areas.is_empty() {
+        vec![(0..swaths.swaths.len(), None)]
+    } else {
+        swaths
+            .areas
+            .iter()
+            .map(|a| (a.swaths.clone(), Some(&a.area)))
+            .collect()
+    };
+    let mut blocks = Vec::new();
+    for (range, area) in ranges {
+        let Some(slice) = swaths.swaths.get(range.clone()) else {
+            continue;
+        };
+        let members = block_members(slice);
+        let single = members.len() == 1;
+        for ids in members {
+            let ids: Vec<usize> = ids.into_iter().map(|i| i + range.start).collect();
+            let outline = match area {
+                Some(a) if single && a.0.len() == 1 => a.0[0].clone(),
+                _ => outline(swaths, &ids),
+            };
+            blocks.push(Block {
+                index: blocks.len(),
+                outline,
+                bearing: swaths.swaths[ids[0]].bearing,
+                swaths: ids,
+            });
+        }
+    }
     Blocks { blocks }
 }
 

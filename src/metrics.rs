@@ -1,10 +1,10 @@
 //! Metrics: the figures by which a plan is judged (Zhou et al. table 1, Fields2Cover's objectives).
 
-use crate::decompose::Blocks;
+use crate::decompose::{Blocks, Decomposition};
 use crate::direction::{DirectionMode, SearchMethod};
 use crate::field::Field;
 use crate::headland::Headlands;
-use crate::objective::{Machine, ObjectiveValues};
+use crate::objective::{turn_length, Machine, ObjectiveValues};
 use crate::obstacles::{ObstacleClass, ObstacleClasses};
 use crate::path::{Path, SegmentKind};
 use crate::swath::Swaths;
@@ -60,8 +60,11 @@ pub struct Summary {
     /// Every objective's value for the plan's swaths (Fields2Cover's and Oksanen's), with turns
     /// by the turn model.
     pub objectives: ObjectiveValues,
-    /// Estimated operation time, seconds: swaths and headland passes at working speed, turns (by
-    /// the turn model) and connections at turning speed.
+    /// How the inner field was cut into blocks, and the candidates compared.
+    pub decomposition: DecompositionReport,
+    /// Estimated operation time, seconds: swaths and headland passes at working speed; turns
+    /// within blocks (by the turn model) and connections (each its length and a turn onto it) at
+    /// turning speed.
     pub estimated_time_s: f64,
     /// Time the planner took, milliseconds.
     pub planning_ms: f64,
@@ -77,6 +80,57 @@ pub struct DirectionFigures {
     pub objectives: ObjectiveValues,
     /// The machine.
     pub machine: Machine,
+    /// Length of the turns within blocks by the turn model, metres.
+    pub block_turning_m: f64,
+}
+
+/// How the inner field was cut into blocks.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct DecompositionReport {
+    /// What the `decomposition` option asked for.
+    pub requested: Decomposition,
+    /// What the plan uses: for `auto`, the candidate of lowest estimated operation time.
+    pub method: Decomposition,
+    /// Why, in words.
+    pub reason: String,
+    /// Every decomposition planned, with its figures.
+    pub candidates: Vec<DecompositionCandidate>,
+}
+
+impl Default for DecompositionReport {
+    fn default() -> Self {
+        DecompositionReport {
+            requested: Decomposition::None,
+            method: Decomposition::None,
+            reason: String::new(),
+            candidates: Vec::new(),
+        }
+    }
+}
+
+/// The figures of one decomposition planned.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct DecompositionCandidate {
+    /// The decomposition.
+    pub method: Decomposition,
+    /// Number of blocks.
+    pub block_count: usize,
+    /// The swath directions of its blocks, compass degrees in `[0, 180)`, each once (within a
+    /// degree), in the order of the blocks.
+    pub bearings_deg: Vec<f64>,
+    /// Number of swaths.
+    pub swath_count: usize,
+    /// Number of turns within blocks.
+    pub turn_count: usize,
+    /// Headland passes along borders between blocks.
+    pub block_headland_passes: usize,
+    /// Estimated operation time, seconds (as [`Summary::estimated_time_s`]).
+    pub estimated_time_s: f64,
+    /// Inner field area its swaths leave uncovered, square metres: counted as if worked at
+    /// working speed when the decompositions are compared.
+    pub uncovered_area_m2: f64,
+    /// Directions the decomposition itself evaluated (split and merge's per-block searches).
+    pub evaluations: usize,
 }
 
 /// How the direction of a plan was chosen.
@@ -128,6 +182,7 @@ pub fn summarise(
         direction,
         objectives,
         machine,
+        block_turning_m,
     } = *direction;
     let swath_distance_m = path.length_of(SegmentKind::Swath);
     let headland_distance_m = path.length_of(SegmentKind::HeadlandPass);
@@ -175,8 +230,13 @@ pub fn summarise(
         bearing_deg: swaths.bearing.to_degrees(),
         direction,
         objectives,
+        decomposition: DecompositionReport::default(),
         estimated_time_s: working_distance_m / machine.working_speed
-            + (objectives.turning_distance_m + connection_distance_m) / machine.turning_speed,
+            + (block_turning_m
+                + connection_distance_m
+                + path.count_of(SegmentKind::Connection) as f64
+                    * turn_length(machine.width, machine.turn_radius))
+                / machine.turning_speed,
         planning_ms: 0.0,
     }
 }

@@ -38,6 +38,9 @@ pub struct SwathStats {
     /// between the swaths' ends; between blocks, a turn and the way between their nearest
     /// corners), metres.
     pub turning_distance_m: f64,
+    /// Of the turning distance, the moves from one block to the next (a turn and the way
+    /// between the blocks' nearest corners), metres.
+    pub block_change_m: f64,
     /// Area of the region the swaths are to cover, square metres.
     pub area_m2: f64,
     /// Of which covered by the swaths' strips, square metres.
@@ -52,6 +55,7 @@ impl AddAssign for SwathStats {
         self.swath_length_m += o.swath_length_m;
         self.turn_count += o.turn_count;
         self.turning_distance_m += o.turning_distance_m;
+        self.block_change_m += o.block_change_m;
         self.area_m2 += o.area_m2;
         self.covered_area_m2 += o.covered_area_m2;
         self.strip_area_m2 += o.strip_area_m2;
@@ -343,10 +347,18 @@ impl ObjectiveValues {
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn measure(swaths: &[Swath], width: f64, area: &MultiPolygon, m: &Machine) -> SwathStats {
+    let mut stats = measure_turns(swaths, width, area.unsigned_area(), m);
+    stats.covered_area_m2 = covered_area(swaths, width, area);
+    stats
+}
+
+/// [`measure`] without the exact coverage, for estimates made many times over: the covered
+/// area is taken as the strips' area, at most the area (`area_m2`, square metres).
+pub fn measure_turns(swaths: &[Swath], width: f64, area_m2: f64, m: &Machine) -> SwathStats {
     let mut stats = SwathStats {
         swath_count: swaths.len(),
         swath_length_m: swaths.iter().map(Swath::length).sum(),
-        area_m2: area.unsigned_area(),
+        area_m2,
         ..SwathStats::default()
     };
     stats.strip_area_m2 = stats.swath_length_m * width;
@@ -376,12 +388,14 @@ pub fn measure(swaths: &[Swath], width: f64, area: &MultiPolygon, m: &Machine) -
                 .iter()
                 .flat_map(|p| corners.iter().map(move |q| (p.x - q.x).hypot(p.y - q.y)))
                 .fold(f64::INFINITY, f64::min);
+            let change = turn_length(width, m.turn_radius) + gap;
             stats.turn_count += 1;
-            stats.turning_distance_m += turn_length(width, m.turn_radius) + gap;
+            stats.turning_distance_m += change;
+            stats.block_change_m += change;
         }
         previous_corners = Some(corners);
     }
-    stats.covered_area_m2 = covered_area(swaths, width, area);
+    stats.covered_area_m2 = stats.strip_area_m2.min(area_m2);
     stats
 }
 

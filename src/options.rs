@@ -1,6 +1,7 @@
 //! The planner's options: one struct shared by the Rust API, the JavaScript API (camelCase
 //! keys) and the command-line planner (kebab-case flags), with a default for every option.
 
+use crate::decompose::Decomposition;
 use crate::direction::{DirectionMode, SearchMethod};
 use crate::error::{ErrorCode, PlanError};
 use crate::field::Coordinates;
@@ -93,6 +94,10 @@ pub struct PlanOptions {
     pub min_swath_length: Option<f64>,
     /// The coordinates of the input and of the plan: WGS84 longitude/latitude, or local metres.
     pub coordinates: Coordinates,
+    /// How the inner field is cut into blocks: `none` (one direction), `boustrophedon` (one
+    /// direction, Zhou et al.'s cells), `split-merge` (Oksanen & Visala: a direction per block)
+    /// or `auto` (the one of lowest estimated operation time).
+    pub decomposition: Decomposition,
 }
 
 impl Default for PlanOptions {
@@ -119,6 +124,7 @@ impl Default for PlanOptions {
             forbidden_bearings_deg: Vec::new(),
             min_swath_length: None,
             coordinates: Coordinates::Wgs84,
+            decomposition: Decomposition::Auto,
         }
     }
 }
@@ -230,6 +236,11 @@ pub const OPTION_DOCS: &[(&str, &str, &str)] = &[
         "coordinates",
         "wgs84|metric",
         "coordinates of the input and the plan: longitude/latitude or local metres (default wgs84)",
+    ),
+    (
+        "decomposition",
+        "none|boustrophedon|split-merge|auto",
+        "how the field is cut into blocks: one direction, Zhou's boustrophedon cells, Oksanen's split and merge with a direction per block, or whichever is fastest (default auto)",
     ),
 ];
 
@@ -361,7 +372,13 @@ impl PlanOptions {
                 );
             }
         }
-        self.direction_mode()?;
+        let mode = self.direction_mode()?;
+        if self.decomposition == Decomposition::SplitMerge && mode != DirectionMode::Search {
+            return Err(PlanError::new(
+                ErrorCode::InvalidOption,
+                "option `decomposition` is `split-merge`, which searches a direction for each block; it cannot follow a fixed `bearing`, a reference or the longest edge (use `auto` or `boustrophedon`, or leave the direction to the search)",
+            ));
+        }
         if let Some(m) = self.min_swath_length {
             if !(m.is_finite() && m >= 0.0) {
                 return out_of_range("minSwathLength", format!("{m}"), "0 or more metres");

@@ -36,6 +36,51 @@ pub fn forbidding(regions: &[ProhibitedRegion], bearing: f64) -> Vec<usize> {
         .collect()
 }
 
+/// The forbidden ranges that hold anywhere in `area`: the `global` ones and those of every
+/// region it reaches into by more than `min_area` square metres.
+///
+/// ```
+/// use furrow::field::ProhibitedRegion;
+/// use furrow::geometry::BearingRange;
+/// use furrow::prohibited::constraints_in;
+/// use geo::{polygon, MultiPolygon};
+///
+/// let slope = ProhibitedRegion {
+///     polygon: polygon![(x: 0., y: 0.), (x: 40., y: 0.), (x: 40., y: 40.), (x: 0., y: 40.)],
+///     forbidden: vec![BearingRange { from_deg: 350.0, to_deg: 10.0 }],
+///     feature: 1,
+///     name: None,
+/// };
+/// let inside = MultiPolygon::new(vec![polygon![(x: 10., y: 10.), (x: 60., y: 10.), (x: 60., y: 20.), (x: 10., y: 20.)]]);
+/// let outside = MultiPolygon::new(vec![polygon![(x: 50., y: 50.), (x: 60., y: 50.), (x: 60., y: 60.)]]);
+/// assert_eq!(constraints_in(&inside, &[slope.clone()], &[], 1.0).len(), 1);
+/// assert!(constraints_in(&outside, &[slope], &[], 1.0).is_empty());
+/// ```
+pub fn constraints_in(
+    area: &MultiPolygon,
+    regions: &[ProhibitedRegion],
+    global: &[BearingRange],
+    min_area: f64,
+) -> Vec<BearingRange> {
+    let mut all = global.to_vec();
+    let bounds = area.bounding_rect();
+    for r in regions {
+        let near = match (bounds, r.polygon.bounding_rect()) {
+            (Some(a), Some(b)) => a.intersects(&b),
+            _ => false,
+        };
+        if near
+            && area
+                .intersection(&MultiPolygon::new(vec![r.polygon.clone()]))
+                .unsigned_area()
+                > min_area
+        {
+            all.extend(r.forbidden.iter().copied());
+        }
+    }
+    all
+}
+
 /// Splits `area` into the part worked at the field's direction and the parts of the regions
 /// `cut` (indices, ascending) worked at their own.
 ///

@@ -115,7 +115,6 @@ fn every_valid_field_plans_and_keeps_the_invariants() {
 fn check_swaths(plan: &Plan, name: &str) {
     let w = plan.options.width;
     let inner = &plan.headlands.inner;
-    let mut by_line: Vec<(usize, f64, f64, f64)> = Vec::new();
     for s in &plan.swaths.swaths {
         let mid = Point((s.centre.start + s.centre.end) / 2.0);
         assert!(
@@ -135,28 +134,43 @@ fn check_swaths(plan: &Plan, name: &str) {
             s.index
         );
         assert!(s.length() >= plan.options.min_swath_length_m() - 1e-9);
-        if by_line.last().map(|l| l.0) != Some(s.line_index) {
-            by_line.push((s.line_index, s.across, s.overlap_m, s.bearing));
-        }
     }
-    for pair in by_line.windows(2) {
-        let ((i, a, oa, ba), (j, b, ob, bb)) = (pair[0], pair[1]);
-        if ba != bb {
-            continue; // a prohibited region's own lines
+    // Within each area worked at one direction (the field's, a block's, a prohibited region's),
+    // lines lie a width apart.
+    let covered: usize = plan.swaths.areas.iter().map(|a| a.swaths.len()).sum();
+    assert_eq!(
+        covered,
+        plan.swaths.swaths.len(),
+        "{name}: swaths outside areas"
+    );
+    for area in &plan.swaths.areas {
+        let mut by_line: Vec<(usize, f64, f64)> = Vec::new();
+        for s in &plan.swaths.swaths[area.swaths.clone()] {
+            assert_eq!(
+                s.bearing, area.bearing,
+                "{name}: swath {} off its area's direction",
+                s.index
+            );
+            if by_line.last().map(|l| l.0) != Some(s.line_index) {
+                by_line.push((s.line_index, s.across, s.overlap_m));
+            }
         }
-        let gap = b - a;
-        let expected = (j - i) as f64 * w;
-        if oa > 0.0 || ob > 0.0 {
-            // A line moved to work a leftover strip: closer, never further.
-            assert!(
-                gap <= expected + 1e-6 && gap > 0.0,
-                "{name}: last gap {gap}"
-            );
-        } else {
-            assert!(
-                (gap - expected).abs() < 1e-6,
-                "{name}: lines {i} and {j} are {gap} m apart, expected {expected}"
-            );
+        for pair in by_line.windows(2) {
+            let ((i, a, oa), (j, b, ob)) = (pair[0], pair[1]);
+            let gap = b - a;
+            let expected = (j - i) as f64 * w;
+            if oa > 0.0 || ob > 0.0 {
+                // A line moved to work a leftover strip: closer, never further.
+                assert!(
+                    gap <= expected + 1e-6 && gap > 0.0,
+                    "{name}: last gap {gap}"
+                );
+            } else {
+                assert!(
+                    (gap - expected).abs() < 1e-6,
+                    "{name}: lines {i} and {j} are {gap} m apart, expected {expected}"
+                );
+            }
         }
     }
 }

@@ -329,8 +329,10 @@ fn coarse_to_fine_is_within_one_percent_of_brute_force_on_95_percent_of_fields()
     let mut misses = Vec::new();
     for (name, text, options) in &cases {
         let cost = |method| {
+            // The direction search alone: without the decompositions' own searches per block.
             let o = PlanOptions {
                 search: method,
+                decomposition: furrow::decompose::Decomposition::None,
                 ..options.clone()
             };
             plan_geojson(text, &o).ok().map(|p| {

@@ -33,8 +33,9 @@ const OPTION_INPUTS = [
   "obstacleThreshold",
   "objective",
   "search",
+  "decomposition",
 ];
-const CHOICES = new Set(["headlandMode", "headlandOrder", "objective", "search"]); // <select>s: their value is the option
+const CHOICES = new Set(["headlandMode", "headlandOrder", "objective", "search", "decomposition"]); // <select>s: their value is the option
 const OPTIONAL = new Set(["bearing", "obstacleThreshold"]); // empty: null, the planner's default
 const OPENED = ":opened"; // value of the field picker's entry for an opened file
 const MAX_FILE_BYTES = 64 * 1024 * 1024; // the planner refuses more than 32 MB anyway
@@ -375,6 +376,26 @@ function readOptions() {
   return { options, problems };
 }
 
+/** "Direction per block, 3 directions" with the candidates' times for auto. */
+function decompositionText(d) {
+  if (!d) return "–";
+  const names = {
+    none: "One direction",
+    boustrophedon: "Cells, one direction",
+    "split-merge": "Direction per block",
+  };
+  const chosen = d.candidates?.find((c) => c.method === d.method);
+  const directions = chosen ? chosen.bearings_deg.length : 1;
+  let text = `${names[d.method] ?? d.method}${directions > 1 ? `, ${directions} directions` : ""}`;
+  if (d.requested === "auto" && d.candidates?.length > 1) {
+    const others = d.candidates
+      .filter((c) => c.method !== d.method)
+      .map((c) => `${names[c.method] ?? c.method} ${duration(c.estimated_time_s)}`);
+    text += ` (fastest; ${others.join(", ")})`;
+  }
+  return text;
+}
+
 /** The folded options' values, beside their title: "All around, last, 6 m, shortest time". */
 function showMoreState() {
   const text = (id) => ui.inputs[id].selectedOptions?.[0]?.textContent ?? "";
@@ -580,6 +601,11 @@ function renderSummary(s, options, callMs) {
     ["Swaths", swaths, { key: "swath_count" }],
     ["Turns", s.turn_count, { key: "turn_count" }],
     ["Blocks", s.block_count, { key: "block_count" }],
+    [
+      "Decomposition",
+      decompositionText(s.decomposition),
+      { key: "decomposition", title: s.decomposition?.reason ?? "" },
+    ],
     ["Headland passes", s.headland_pass_count, { key: "headland_pass_count" }],
     ["Working distance", km(s.working_distance_m), { key: "working_distance_m" }],
     ["Turning distance", km(s.turning_distance_m), { key: "turning_distance_m" }],

@@ -9,16 +9,21 @@
 //! the slab lines are `across = const`.
 
 use crate::geometry::SweepFrame;
-use geo::{Coord, LineString, MultiPolygon, Polygon};
+use geo::{Coord, LineString, MultiPolygon, Polygon, SimplifyIdx};
 
 /// Across coordinates closer than this (metres) are one slab line.
-const SAME_LINE_M: f64 = 1e-9;
+const SAME_LINE_M: f64 = 1e-6;
 /// Sides that differ by less than this (metres) match.
 const MATCH_M: f64 = 1e-6;
 
 /// A trapezoid of the split, in the sweep frame: between the slab lines `across.0` and
 /// `across.1`, from its lower end (smaller `along`) to its upper end.
-#[derive(Debug, Clone, Copy, PartialEq)]
+///
+/// Its ends are stretches of the area's boundary. Split with tolerance 0 they are straight
+/// edges and the trapezoid is one in the strict sense; with a tolerance, the vertices of a curve
+/// that lie within it of a straight line draw no slab line, and an end is the curve between two
+/// slab lines: a polyline running monotonically across, within the tolerance of its chord.
+#[derive(Debug, Clone, PartialEq)]
 pub struct Trapezoid {
     /// The slab it lies in (index into the slab lines, ordered across).
     pub slab: usize,
@@ -28,18 +33,20 @@ pub struct Trapezoid {
     pub lower: (f64, f64),
     /// `along` of its upper end on the left and on the right side.
     pub upper: (f64, f64),
+    /// The lower end, `(across, along)` points from left to right.
+    pub lower_end: Vec<(f64, f64)>,
+    /// The upper end, `(across, along)` points from left to right.
+    pub upper_end: Vec<(f64, f64)>,
 }
 
 impl Trapezoid {
     /// Its area, square metres.
     pub fn area(&self) -> f64 {
-        let left = self.upper.0 - self.lower.0;
-        let right = self.upper.1 - self.lower.1;
-        (self.across.1 - self.across.0) * (left + right) / 2.0
+        chain_integral(&self.upper_end) - chain_integral(&self.lower_end)
     }
 
-    /// Angle (radians) of its lower and upper end to the driving direction: π/2 when the end
-    /// runs straight across, 0 when it runs along the swaths.
+    /// Angle (radians) of the chords of its lower and upper end to the driving direction: π/2
+    /// when the end runs straight across, 0 when it runs along the swaths.
     pub fn end_angles(&self) -> (f64, f64) {
         let width = self.across.1 - self.across.0;
         let angle = |d: f64| width.atan2(d.abs());
@@ -48,25 +55,54 @@ impl Trapezoid {
             angle(self.upper.1 - self.upper.0),
         )
     }
+
+    /// Whether both ends' chords make an angle with the driving direction whose tangent is at
+    /// least `tan_min` (the same test as [`Trapezoid::end_angles`], without the arctangents).
+    pub fn ends_steeper_than(&self, tan_min: f64) -> bool {
+        let width = self.across.1 - self.across.0;
+        let steep = |d: f64| width >= d.abs() * tan_min;
+        steep(self.lower.1 - self.lower.0) && steep(self.upper.1 - self.upper.0)
+    }
+
+    /// `along` of its lower and upper end at `across` (clamped to its slab).
+    pub fn ends_at(&self, across: f64) -> (f64, f64) {
+        (
+            chain_at(&self.lower_end, across),
+            chain_at(&self.upper_end, across),
+        )
+    }
 }
 
-/// One polygon edge in the sweep frame, left end first (`c0 < c1`).
-#[derive(Debug, Clone, Copy)]
-struct Edge {
-    c0: f64,
-    a0: f64,
-    c1: f64,
-    a1: f64,
+/// The integral of `along` over `across` under a chain running left to right.
+fn chain_integral(chain: &[(f64, f64)]) -> f64 {
+    chain
+        .windows(2)
+        .map(|w| (w[1].0 - w[0].0) * (w[0].1 + w[1].1) / 2.0)
+        .sum()
 }
 
-impl Edge {
-    fn along_at(&self, c: f64) -> f64 {
-        self.a0 + (c - self.c0) / (self.c1 - self.c0) * (self.a1 - self.a0)
+/// `along` of a chain running left to right at `across` (clamped to its ends).
+fn chain_at(chain: &[(f64, f64)], c: f64) -> f64 {
+    let i = chain.partition_point(|p| p.0 < c);
+    match (i.checked_sub(1).and_then(|j| chain.get(j)), chain.get(i)) {
+        (Some(&(c0, a0)), Some(&(c1, a1))) if c1 - c0 > 0.0 => {
+            a0 + (c - c0) / (c1 - c0) * (a1 - a0)
+        }
+        (_, Some(&(_, a))) | (Some(&(_, a)), None) => a,
+        (None, None) => 0.0,
     }
 }
 
 /// Splits `area` into trapezoids at the driving direction of `frame`, ordered by slab and, in a
 /// slab, along it.
+///
+/// Slab lines run through every vertex where the boundary turns back across the direction (a
+/// vertex that is not strictly between its neighbours in `across`: there the number of pieces
+/// of a swath line changes) and through every vertex that the Douglas-Peucker simplification of
+/// its ring by `tolerance` (metres) keeps. With tolerance 0 that is every vertex, Oksanen &
+/// Visala's split (2.3); with a tolerance of a fraction of the working width, a curved edge
+/// drawn with many vertices (a rounded headland corner, a GNSS-recorded boundary) no longer
+/// cuts the area into slivers one vertex apart, and the pieces still partition the area exactly.
 ///
 /// ```
 /// use furrow::decompose::cells::split;
@@ -79,62 +115,173 @@ impl Edge {
 ///     exterior: [(x: 0., y: 0.), (x: 10., y: 0.), (x: 10., y: 10.), (x: 0., y: 10.)],
 ///     interiors: [[(x: 4., y: 4.), (x: 6., y: 4.), (x: 6., y: 6.), (x: 4., y: 6.)]],
 /// );
-/// let t = split(&MultiPolygon::new(vec![field.clone()]), &SweepFrame::new(0.0));
+/// let t = split(&MultiPolygon::new(vec![field.clone()]), &SweepFrame::new(0.0), 0.0);
 /// assert_eq!(t.len(), 4);
 /// let total: f64 = t.iter().map(|t| t.area()).sum();
 /// assert!((total - field.unsigned_area()).abs() < 1e-9);
 /// ```
-pub fn split(area: &MultiPolygon, frame: &SweepFrame) -> Vec<Trapezoid> {
-    let mut edges: Vec<Edge> = Vec::new();
-    let mut lines: Vec<f64> = Vec::new();
-    for polygon in &area.0 {
-        for ring in std::iter::once(polygon.exterior()).chain(polygon.interiors()) {
-            for w in ring.0.windows(2) {
-                let (c0, a0) = frame.project(w[0]);
-                let (c1, a1) = frame.project(w[1]);
-                lines.push(c0);
-                if (c1 - c0).abs() > SAME_LINE_M {
-                    edges.push(if c0 < c1 {
-                        Edge { c0, a0, c1, a1 }
-                    } else {
-                        Edge {
-                            c0: c1,
-                            a0: a1,
-                            c1: c0,
-                            a1: a0,
-                        }
-                    });
+pub fn split(area: &MultiPolygon, frame: &SweepFrame, tolerance: f64) -> Vec<Trapezoid> {
+    split_prepared(&PreparedArea::new(area, tolerance), frame)
+}
+
+/// An area ready to be split at many directions: its rings, and which vertices the
+/// simplification keeps (that does not depend on the direction).
+#[derive(Debug, Clone, Default)]
+pub struct PreparedArea {
+    rings: Vec<(Vec<Coord>, Vec<bool>)>,
+}
+
+impl PreparedArea {
+    /// Prepares `area` for splits with the given simplification tolerance (metres).
+    pub fn new(area: &MultiPolygon, tolerance: f64) -> Self {
+        let mut rings = Vec::new();
+        for polygon in &area.0 {
+            for ring in std::iter::once(polygon.exterior()).chain(polygon.interiors()) {
+                let mut pts: Vec<Coord> = ring.0.clone();
+                if pts.len() > 1 && pts.first() == pts.last() {
+                    pts.pop();
                 }
+                let n = pts.len();
+                if n < 3 {
+                    continue;
+                }
+                let mut kept = vec![tolerance <= 0.0; n];
+                if tolerance > 0.0 {
+                    for i in ring.simplify_idx(tolerance) {
+                        if let Some(m) = kept.get_mut(i % n) {
+                            *m = true;
+                        }
+                    }
+                }
+                rings.push((pts, kept));
             }
         }
+        PreparedArea { rings }
     }
-    lines.sort_by(f64::total_cmp);
-    lines.dedup_by(|a, b| (*a - *b).abs() <= SAME_LINE_M);
-    edges.sort_by(|e, f| e.c0.total_cmp(&f.c0));
 
-    let mut out = Vec::new();
-    let mut active: Vec<Edge> = Vec::new();
-    let mut next = 0;
-    let mut crossing: Vec<(f64, Edge)> = Vec::new();
-    for (slab, pair) in lines.windows(2).enumerate() {
-        let (x0, x1) = (pair[0], pair[1]);
-        let mid = (x0 + x1) / 2.0;
-        while next < edges.len() && edges[next].c0 < mid {
-            active.push(edges[next]);
-            next += 1;
+    /// The area with only the vertices the simplification keeps: within the tolerance of the
+    /// area, with far fewer vertices where its edges curve, for splits that only estimate (a
+    /// direction search scoring cells).
+    pub fn simplified(&self) -> PreparedArea {
+        let rings = self
+            .rings
+            .iter()
+            .filter_map(|(pts, kept)| {
+                let pts: Vec<Coord> = pts
+                    .iter()
+                    .zip(kept)
+                    .filter(|(_, &k)| k)
+                    .map(|(&p, _)| p)
+                    .collect();
+                (pts.len() >= 3).then(|| {
+                    let n = pts.len();
+                    (pts, vec![true; n])
+                })
+            })
+            .collect();
+        PreparedArea { rings }
+    }
+}
+
+/// [`split`] of a prepared area.
+pub fn split_prepared(area: &PreparedArea, frame: &SweepFrame) -> Vec<Trapezoid> {
+    let mut rings: Vec<Vec<(f64, f64)>> = Vec::with_capacity(area.rings.len());
+    let mut lines: Vec<f64> = Vec::new();
+    for (ring, kept) in &area.rings {
+        let pts: Vec<(f64, f64)> = ring.iter().map(|&p| frame.project(p)).collect();
+        let n = pts.len();
+        for i in 0..n {
+            let (p, c, q) = (pts[(i + n - 1) % n].0, pts[i].0, pts[(i + 1) % n].0);
+            let monotone = (p < c - SAME_LINE_M && c < q - SAME_LINE_M)
+                || (p > c + SAME_LINE_M && c > q + SAME_LINE_M);
+            if kept[i] || !monotone {
+                lines.push(c);
+            }
         }
-        active.retain(|e| e.c1 > mid);
-        crossing.clear();
-        crossing.extend(active.iter().map(|e| (e.along_at(mid), *e)));
-        crossing.sort_by(|a, b| a.0.total_cmp(&b.0));
-        // Even-odd: crossings pair up into the intervals inside.
-        for pair in crossing.chunks_exact(2) {
-            let (lo, hi) = (pair[0].1, pair[1].1);
+        rings.push(pts);
+    }
+    lines.sort_unstable_by(f64::total_cmp);
+    lines.dedup_by(|a, b| (*a - *b).abs() <= SAME_LINE_M);
+    if lines.len() < 2 {
+        return Vec::new();
+    }
+    // The slab line a coordinate lies on, if any.
+    let on_line = |c: f64| -> Option<usize> {
+        let i = lines.partition_point(|&l| l < c - SAME_LINE_M);
+        lines
+            .get(i)
+            .filter(|&&l| (l - c).abs() <= SAME_LINE_M)
+            .map(|_| i)
+    };
+    // Each ring cut at the slab lines into chains running from one line to the next.
+    let mut chains: Vec<Vec<Vec<(f64, f64)>>> = vec![Vec::new(); lines.len() - 1];
+    let mut emit = |chain: &mut Vec<(f64, f64)>, last: (f64, f64)| {
+        let mut done = std::mem::replace(chain, vec![last]);
+        let (Some(&first), Some(&end)) = (done.first(), done.last()) else {
+            return;
+        };
+        if (end.0 - first.0).abs() <= SAME_LINE_M {
+            return; // along a slab line
+        }
+        if first.0 > end.0 {
+            done.reverse();
+        }
+        if let Some(slab) = on_line(done[0].0).filter(|&s| s + 1 < lines.len()) {
+            chains[slab].push(done);
+        }
+    };
+    for pts in &rings {
+        let n = pts.len();
+        // Start at the leftmost vertex: it always lies on a slab line.
+        let s = (0..n)
+            .min_by(|&i, &j| pts[i].0.total_cmp(&pts[j].0))
+            .unwrap_or(0);
+        let snap = |p: (f64, f64)| on_line(p.0).map_or(p, |i| (lines[i], p.1));
+        let mut prev = snap(pts[s]);
+        let mut chain = vec![prev];
+        for k in 1..=n {
+            let q = snap(pts[(s + k) % n]);
+            let (lo, hi) = (prev.0.min(q.0), prev.0.max(q.0));
+            let from = lines.partition_point(|&l| l <= lo + SAME_LINE_M);
+            let to = lines.partition_point(|&l| l < hi - SAME_LINE_M);
+            let between = lines.get(from..to).unwrap_or(&[]);
+            let crossing = |x: f64| (x, prev.1 + (x - prev.0) / (q.0 - prev.0) * (q.1 - prev.1));
+            if q.0 > prev.0 {
+                for &x in between {
+                    let p = crossing(x);
+                    chain.push(p);
+                    emit(&mut chain, p);
+                }
+            } else {
+                for &x in between.iter().rev() {
+                    let p = crossing(x);
+                    chain.push(p);
+                    emit(&mut chain, p);
+                }
+            }
+            chain.push(q);
+            if on_line(q.0).is_some() {
+                emit(&mut chain, q);
+            }
+            prev = q;
+        }
+    }
+    let mut out = Vec::new();
+    for (slab, mut in_slab) in chains.into_iter().enumerate() {
+        let (x0, x1) = (lines[slab], lines[slab + 1]);
+        let mid = (x0 + x1) / 2.0;
+        in_slab.sort_unstable_by(|a, b| chain_at(a, mid).total_cmp(&chain_at(b, mid)));
+        // Even-odd: the chains pair up into the pieces inside.
+        let mut it = in_slab.into_iter();
+        while let (Some(lo), Some(hi)) = (it.next(), it.next()) {
+            let end = |c: &[(f64, f64)]| (c[0].1, c[c.len() - 1].1);
             out.push(Trapezoid {
                 slab,
                 across: (x0, x1),
-                lower: (lo.along_at(x0), lo.along_at(x1)),
-                upper: (hi.along_at(x0), hi.along_at(x1)),
+                lower: end(&lo),
+                upper: end(&hi),
+                lower_end: lo,
+                upper_end: hi,
             });
         }
     }
@@ -178,12 +325,23 @@ pub struct Cell {
 ///     (x: 60., y: 30.), (x: 30., y: 30.), (x: 30., y: 90.), (x: 0., y: 90.)
 /// ];
 /// let frame = SweepFrame::new(0.0);
-/// let t = split(&MultiPolygon::new(vec![u]), &frame);
+/// let t = split(&MultiPolygon::new(vec![u]), &frame, 0.0);
 /// assert_eq!(t.len(), 3); // lines at x = 0, 30, 60, 90: three slabs
 /// let cells = merge(&t, &frame, MergeRule::Boustrophedon);
 /// assert_eq!(cells.len(), 3);
 /// ```
 pub fn merge(trapezoids: &[Trapezoid], frame: &SweepFrame, rule: MergeRule) -> Vec<Cell> {
+    merge_chains(trapezoids, rule)
+        .into_iter()
+        .map(|chain| Cell {
+            outline: outline(trapezoids, &chain, frame),
+            trapezoids: chain,
+        })
+        .collect()
+}
+
+/// The cells of [`merge`] as chains of trapezoids (indices, left to right), without outlines.
+pub fn merge_chains(trapezoids: &[Trapezoid], rule: MergeRule) -> Vec<Vec<usize>> {
     let n = trapezoids.len();
     // The trapezoid each one continues into, if the rule merges them.
     let mut next: Vec<Option<usize>> = vec![None; n];
@@ -202,26 +360,30 @@ pub fn merge(trapezoids: &[Trapezoid], frame: &SweepFrame, rule: MergeRule) -> V
             (Some(&a), None) => (a, n),
             _ => continue,
         };
-        for j in from..to {
-            let u = &trapezoids[j];
-            if u.slab != t.slab + 1 || (u.across.0 - t.across.1).abs() > SAME_LINE_M {
-                continue;
+        // The next slab's trapezoids are ordered along it: the one that may match starts where
+        // this one's right side starts.
+        let Some(slab) = trapezoids.get(from..to) else {
+            continue;
+        };
+        let j = from + slab.partition_point(|u| u.lower.0 < t.lower.1 - MATCH_M);
+        let Some(u) = trapezoids.get(j).filter(|_| j < to) else {
+            continue;
+        };
+        if u.slab != t.slab + 1 || (u.across.0 - t.across.1).abs() > SAME_LINE_M {
+            continue;
+        }
+        let matching =
+            (u.lower.0 - t.lower.1).abs() < MATCH_M && (u.upper.0 - t.upper.1).abs() < MATCH_M;
+        let steep_enough = match rule {
+            MergeRule::Boustrophedon => true,
+            MergeRule::SplitMerge { min_end_angle } => {
+                let tan = min_end_angle.tan();
+                matching && t.ends_steeper_than(tan) && u.ends_steeper_than(tan)
             }
-            let matching =
-                (u.lower.0 - t.lower.1).abs() < MATCH_M && (u.upper.0 - t.upper.1).abs() < MATCH_M;
-            let steep_enough = match rule {
-                MergeRule::Boustrophedon => true,
-                MergeRule::SplitMerge { min_end_angle } => {
-                    let (a, b) = t.end_angles();
-                    let (c, d) = u.end_angles();
-                    a.min(b).min(c).min(d) >= min_end_angle
-                }
-            };
-            if matching && steep_enough {
-                next[i] = Some(j);
-                has_previous[j] = true;
-                break;
-            }
+        };
+        if matching && steep_enough {
+            next[i] = Some(j);
+            has_previous[j] = true;
         }
     }
     let mut cells = Vec::new();
@@ -235,11 +397,7 @@ pub fn merge(trapezoids: &[Trapezoid], frame: &SweepFrame, rule: MergeRule) -> V
             chain.push(j);
             k = j;
         }
-        let outline = outline(trapezoids, &chain, frame);
-        cells.push(Cell {
-            trapezoids: chain,
-            outline,
-        });
+        cells.push(chain);
     }
     cells
 }
@@ -260,7 +418,7 @@ pub fn merge(trapezoids: &[Trapezoid], frame: &SweepFrame, rule: MergeRule) -> V
 ///     interiors: [[(x: 4., y: 4.), (x: 6., y: 4.), (x: 6., y: 6.), (x: 4., y: 6.)]],
 /// );
 /// let frame = SweepFrame::new(0.0);
-/// let t = split(&MultiPolygon::new(vec![field]), &frame);
+/// let t = split(&MultiPolygon::new(vec![field]), &frame, 0.0);
 /// let cells = merge(&t, &frame, MergeRule::Boustrophedon);
 /// let edges = adjacency(&t, &cells);
 /// assert_eq!(edges.len(), 4);
@@ -297,23 +455,19 @@ pub fn adjacency(trapezoids: &[Trapezoid], cells: &[Cell]) -> Vec<(usize, usize,
     out
 }
 
-/// The outline of a chain of trapezoids: along the lower ends left to right, back along the
-/// upper ends.
-fn outline(trapezoids: &[Trapezoid], chain: &[usize], frame: &SweepFrame) -> Polygon {
-    let mut pts: Vec<Coord> = Vec::with_capacity(2 * chain.len() + 3);
+/// The outline of a chain of trapezoids (a cell): along the lower ends left to right, back
+/// along the upper ends, counter-clockwise.
+pub fn outline(trapezoids: &[Trapezoid], chain: &[usize], frame: &SweepFrame) -> Polygon {
+    let mut pts: Vec<Coord> = Vec::with_capacity(4 * chain.len() + 3);
     for (k, &i) in chain.iter().enumerate() {
-        let t = &trapezoids[i];
-        if k == 0 {
-            pts.push(frame.point(t.across.0, t.lower.0));
-        }
-        pts.push(frame.point(t.across.1, t.lower.1));
+        let end = &trapezoids[i].lower_end;
+        let skip = usize::from(k > 0);
+        pts.extend(end.iter().skip(skip).map(|&(c, a)| frame.point(c, a)));
     }
     for (k, &i) in chain.iter().enumerate().rev() {
-        let t = &trapezoids[i];
-        pts.push(frame.point(t.across.1, t.upper.1));
-        if k == 0 {
-            pts.push(frame.point(t.across.0, t.upper.0));
-        }
+        let end = &trapezoids[i].upper_end;
+        let skip = usize::from(k + 1 < chain.len());
+        pts.extend(end.iter().rev().skip(skip).map(|&(c, a)| frame.point(c, a)));
     }
     // Where a trapezoid's ends meet at a side (a triangle), its two points coincide. (Not the
     // ring cleaning of the input: that takes sharp tips for spikes.)
@@ -348,7 +502,7 @@ mod tests {
     fn a_convex_field_is_one_cell_either_way() {
         let field = polygon![(x: 0., y: 0.), (x: 100., y: 0.), (x: 80., y: 60.), (x: 10., y: 50.)];
         let frame = SweepFrame::new(0.3);
-        let t = split(&MultiPolygon::new(vec![field.clone()]), &frame);
+        let t = split(&MultiPolygon::new(vec![field.clone()]), &frame, 0.0);
         assert_eq!(t.len(), 3); // four vertices, three slabs
         let cells = merge(&t, &frame, MergeRule::Boustrophedon);
         assert_eq!(cells.len(), 1);
@@ -362,7 +516,7 @@ mod tests {
         // 6 degrees to the north-running swaths.
         let field = polygon![(x: 0., y: 0.), (x: 100., y: 0.), (x: 110., y: 95.), (x: 100., y: 100.), (x: 0., y: 100.)];
         let frame = SweepFrame::new(0.0);
-        let t = split(&MultiPolygon::new(vec![field]), &frame);
+        let t = split(&MultiPolygon::new(vec![field]), &frame, 0.0);
         let bous = merge(&t, &frame, MergeRule::Boustrophedon);
         assert_eq!(bous.len(), 1);
         let oksanen = merge(
@@ -382,7 +536,7 @@ mod tests {
             interiors: [[(x: 40., y: 20.), (x: 60., y: 25.), (x: 55., y: 40.), (x: 42., y: 38.)]],
         );
         let frame = SweepFrame::new(0.0);
-        let t = split(&MultiPolygon::new(vec![field.clone()]), &frame);
+        let t = split(&MultiPolygon::new(vec![field.clone()]), &frame, 0.0);
         let cells = merge(&t, &frame, MergeRule::Boustrophedon);
         assert_eq!(cells.len(), 4);
         let sum: f64 = cells.iter().map(|c| c.outline.unsigned_area()).sum();
@@ -398,6 +552,7 @@ mod tests {
             hole in proptest::option::of((-10.0..10.0f64, -10.0..10.0f64, 2.0..15.0f64)),
             bearing in 0.0..std::f64::consts::PI,
             split_merge in any::<bool>(),
+            tolerance in prop_oneof![Just(0.0), 0.0..20.0f64],
         ) {
             let n = radii.len();
             let ring: Vec<Coord> = radii.iter().enumerate().map(|(i, r)| {
@@ -419,7 +574,7 @@ mod tests {
             let field = Polygon::new(outer.exterior().clone(), interiors);
             let area = field.unsigned_area();
             let frame = SweepFrame::new(bearing);
-            let t = split(&MultiPolygon::new(vec![field]), &frame);
+            let t = split(&MultiPolygon::new(vec![field]), &frame, tolerance);
             prop_assert!((total(&t) - area).abs() < 1e-6 * area);
             let rule = if split_merge {
                 MergeRule::SplitMerge { min_end_angle: 20f64.to_radians() }

@@ -110,7 +110,7 @@ impl SweepFrame {
                 }
             }
         }
-        edges.sort_by(|e, f| e.c0.min(e.c1).total_cmp(&f.c0.min(f.c1)));
+        edges.sort_unstable_by(|e, f| e.c0.min(e.c1).total_cmp(&f.c0.min(f.c1)));
 
         let mut out = Vec::with_capacity(offsets.len());
         let mut active: Vec<SweepEdge> = Vec::new();
@@ -131,7 +131,7 @@ impl SweepFrame {
                     crossings.push(e.a0 + t * (e.a1 - e.a0));
                 }
             }
-            crossings.sort_by(f64::total_cmp);
+            crossings.sort_unstable_by(f64::total_cmp);
             let pieces = crossings
                 .chunks_exact(2)
                 .filter(|pair| pair[1] > pair[0])

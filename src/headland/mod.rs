@@ -53,6 +53,9 @@ pub enum PassAround {
     Field,
     /// An obstacle (or a group of obstacles) inside the field.
     Obstacle,
+    /// The border between two blocks of different directions whose swaths both end there: the
+    /// pass runs along it, inside one of them.
+    Block,
 }
 
 impl PassAround {
@@ -61,6 +64,7 @@ impl PassAround {
         match self {
             PassAround::Field => "field",
             PassAround::Obstacle => "obstacle",
+            PassAround::Block => "block",
         }
     }
 }

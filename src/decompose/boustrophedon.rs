@@ -1,0 +1,204 @@
+//! Boustrophedon decomposition (Zhou et al. 2.3, after Choset): the inner field at one driving
+//! direction cut into cells that can each be worked back and forth without leaving them.
+//!
+//! A slice parallel to the direction sweeps across the area; the trapezoidal split of
+//! [`super::cells`] puts an event at every vertex of the inner field and of the obstacle
+//! headlands, and its trapezoids are the preliminary blocks. Preliminary blocks of neighbouring
+//! slabs that share a full edge are merged, so that cells only break where the slice meets an
+//! obstacle or a bay (an *in* event) or leaves one (*out*). The adjacency graph joins cells that
+//! touch along the slice. Swaths of the direction are then clustered into the cells
+//! (Zhou et al. 2.3.2): each swath piece lies in exactly one slab, in one trapezoid of it.
+
+use super::cells::{adjacency, merge, split, Cell, MergeRule, Trapezoid};
+use crate::geometry::SweepFrame;
+use crate::swath::{Swath, SwathArea, Swaths};
+use geo::MultiPolygon;
+
+/// Across coordinates (metres) within which a point counts as on a slab line.
+const ON_LINE_M: f64 = 1e-6;
+
+/// The boustrophedon cells of an area at one direction.
+#[derive(Debug, Clone)]
+pub struct BoustrophedonCells {
+    /// The frame of the direction.
+    pub frame: SweepFrame,
+    /// The trapezoids of the split (the preliminary blocks).
+    pub trapezoids: Vec<Trapezoid>,
+    /// The cells, each a chain of trapezoids, in the order the sweep closes them.
+    pub cells: Vec<Cell>,
+    /// The cell of each trapezoid.
+    cell_of: Vec<usize>,
+}
+
+/// Sweeps `area` at swath direction `bearing` (compass radians) into boustrophedon cells; the
+/// split draws slab lines through the vertices the simplification of each ring by `tolerance`
+/// metres keeps (see [`split`]).
+///
+/// ```
+/// use furrow::decompose::boustrophedon::decompose;
+/// use geo::{polygon, Area, MultiPolygon};
+///
+/// // A 60 x 100 field with a pond in its middle, driven north: the cells left of the pond,
+/// // below it, above it and right of it.
+/// let field = polygon!(
+///     exterior: [(x: 0., y: 0.), (x: 60., y: 0.), (x: 60., y: 100.), (x: 0., y: 100.)],
+///     interiors: [[(x: 20., y: 40.), (x: 40., y: 40.), (x: 40., y: 60.), (x: 20., y: 60.)]],
+/// );
+/// let cells = decompose(&MultiPolygon::new(vec![field.clone()]), 0.0, 0.0);
+/// assert_eq!(cells.cells.len(), 4);
+/// let sum: f64 = cells.cells.iter().map(|c| c.outline.unsigned_area()).sum();
+/// assert!((sum - field.unsigned_area()).abs() < 1e-6);
+/// // The side cells touch the cells below and above the pond.
+/// assert_eq!(cells.adjacency().len(), 4);
+/// ```
+pub fn decompose(area: &MultiPolygon, bearing: f64, tolerance: f64) -> BoustrophedonCells {
+    let frame = SweepFrame::new(bearing);
+    let trapezoids = split(area, &frame, tolerance);
+    let cells = merge(&trapezoids, &frame, MergeRule::Boustrophedon);
+    let mut cell_of = vec![usize::MAX; trapezoids.len()];
+    for (c, cell) in cells.iter().enumerate() {
+        for &t in &cell.trapezoids {
+            if let Some(slot) = cell_of.get_mut(t) {
+                *slot = c;
+            }
+        }
+    }
+    BoustrophedonCells {
+        frame,
+        trapezoids,
+        cells,
+        cell_of,
+    }
+}
+
+impl BoustrophedonCells {
+    /// The adjacency graph: `(left cell, right cell, length of the common stretch)` for cells
+    /// touching along a slab line.
+    pub fn adjacency(&self) -> Vec<(usize, usize, f64)> {
+        adjacency(&self.trapezoids, &self.cells)
+    }
+
+    /// The cell holding the point at `(across, along)` in the frame: the trapezoid whose slab
+    /// and ends enclose it, or the nearest one along the slab.
+    pub fn cell_at(&self, across: f64, along: f64) -> Option<usize> {
+        let from = self
+            .trapezoids
+            .partition_point(|t| t.across.1 < across - ON_LINE_M);
+        let mut best: Option<(f64, usize)> = None;
+        for (i, t) in self.trapezoids.iter().enumerate().skip(from) {
+            if t.across.0 > across + ON_LINE_M {
+                break;
+            }
+            if t.across.1 < across - ON_LINE_M {
+                continue;
+            }
+            let (lo, hi) = t.ends_at(across);
+            let miss = (lo - along).max(along - hi).max(0.0);
+            if best.is_none_or(|(m, _)| miss < m) {
+                best = Some((miss, i));
+            }
+        }
+        best.and_then(|(_, i)| self.cell_of.get(i).copied())
+    }
+}
+
+/// Clusters the swaths (all of the cells' direction) into the cells: reorders them cell by
+/// cell, in line order within a cell, renumbers them, and replaces their areas by one area per
+/// cell (cells no swath reaches get an empty one, so that the areas still cover the field).
+pub fn cluster_into_cells(swaths: &mut Swaths, cells: &BoustrophedonCells) {
+    let frame = cells.frame;
+    let mut keyed: Vec<(usize, Swath)> = swaths
+        .swaths
+        .iter()
+        .map(|s| {
+            let (c, a) = frame.project((s.centre.start + s.centre.end) / 2.0);
+            (cells.cell_at(c, a).unwrap_or(usize::MAX), *s)
+        })
+        .collect();
+    // Stable: within a cell the swaths keep their line order.
+    keyed.sort_by_key(|(cell, _)| *cell);
+    let mut renumber = vec![0; swaths.swaths.len()];
+    let mut areas: Vec<SwathArea> = Vec::with_capacity(cells.cells.len());
+    let mut out: Vec<Swath> = Vec::with_capacity(keyed.len());
+    let mut k = 0;
+    for (c, cell) in cells.cells.iter().enumerate() {
+        let start = out.len();
+        while k < keyed.len() && keyed[k].0 == c {
+            let mut s = keyed[k].1;
+            renumber[s.index] = out.len();
+            s.index = out.len();
+            out.push(s);
+            k += 1;
+        }
+        areas.push(SwathArea {
+            swaths: start..out.len(),
+            bearing: swaths.bearing,
+            region: None,
+            area: MultiPolygon::new(vec![cell.outline.clone()]),
+        });
+    }
+    // Swaths no cell holds (none, unless the swaths were cut from another area): one more area.
+    if k < keyed.len() {
+        let start = out.len();
+        for (_, mut s) in keyed.drain(k..) {
+            renumber[s.index] = out.len();
+            s.index = out.len();
+            out.push(s);
+        }
+        areas.push(SwathArea {
+            swaths: start..out.len(),
+            bearing: swaths.bearing,
+            region: None,
+            area: MultiPolygon::new(vec![]),
+        });
+    }
+    for l in &mut swaths.lifts {
+        if let Some(&n) = renumber.get(l.swath) {
+            l.swath = n;
+        }
+    }
+    swaths.lifts.sort_by(|x, y| {
+        (x.swath, x.along.0)
+            .partial_cmp(&(y.swath, y.along.0))
+            .unwrap_or(std::cmp::Ordering::Equal)
+    });
+    swaths.swaths = out;
+    swaths.areas = areas;
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::decompose::cluster_swaths;
+    use crate::swath::generate;
+    use geo::polygon;
+
+    #[test]
+    fn swaths_cluster_into_the_cells_around_a_pond() {
+        let field = polygon!(
+            exterior: [(x: 0., y: 0.), (x: 60., y: 0.), (x: 60., y: 100.), (x: 0., y: 100.)],
+            interiors: [[(x: 20., y: 40.), (x: 40., y: 40.), (x: 40., y: 60.), (x: 20., y: 60.)]],
+        );
+        let area = MultiPolygon::new(vec![field]);
+        let mut swaths = generate(&area, 0.0, 6.0, 6.0).unwrap();
+        let n = swaths.swaths.len();
+        let cells = decompose(&area, 0.0, 0.0);
+        cluster_into_cells(&mut swaths, &cells);
+        assert_eq!(swaths.swaths.len(), n);
+        assert_eq!(swaths.areas.len(), 4);
+        for (i, s) in swaths.swaths.iter().enumerate() {
+            assert_eq!(s.index, i);
+        }
+        let blocks = cluster_swaths(&swaths);
+        assert_eq!(blocks.blocks.len(), 4);
+        // Each block's swaths lie in its cell.
+        for (b, a) in blocks.blocks.iter().zip(&swaths.areas) {
+            use geo::Contains;
+            for &i in &b.swaths {
+                let mid =
+                    geo::Point((swaths.swaths[i].centre.start + swaths.swaths[i].centre.end) / 2.0);
+                assert!(a.area.contains(&mid));
+            }
+        }
+    }
+}

@@ -1,0 +1,415 @@
+//! Joining neighbouring blocks while it saves time.
+//!
+//! Split and merge chooses blocks greedily, one at a time, and cannot see what a choice leaves
+//! behind: an arm cut off at a slightly different direction than its neighbour, a sliver along
+//! an oblique edge, a corner piece. This step looks at every pair of blocks that share a border
+//! at least a working width long, and at the time each would take worked as one block, at the
+//! direction of either (where every prohibited region it reaches into allows it): its swaths,
+//! the turns between them by the turn model, the crop it leaves uncovered at working speed, and
+//! one turn to reach the block. The pair that saves the most is joined, and so on while a join
+//! saves time.
+
+use super::block_headlands::borders;
+use super::split_merge::SplitMergeSettings;
+use super::BlockArea;
+use crate::error::PlanError;
+use crate::objective::{measure, measure_turns, turn_length, Objective, OperationTime, SwathStats};
+use crate::prohibited::constraints_in;
+use crate::swath::{generate_with, LinePlacement, SwathSettings};
+use geo::{Area, BooleanOps, MultiPolygon, Simplify};
+
+/// Estimated time (seconds) to work `area` as one block at swath direction `bearing`: swaths,
+/// turns and the uncovered area (estimated: the area less the strips') by [`OperationTime`],
+/// and the way to reach the block (a turn and half a swath's length).
+pub fn block_time(
+    area: &MultiPolygon,
+    bearing: f64,
+    s: &SplitMergeSettings,
+) -> Result<f64, PlanError> {
+    let swaths = generate_with(
+        area,
+        &SwathSettings {
+            bearing,
+            width: s.width,
+            min_length: s.min_length,
+            placement: LinePlacement::FromEdge,
+        },
+    )?;
+    let stats = measure_turns(&swaths.swaths, s.width, area.unsigned_area(), &s.machine);
+    Ok(OperationTime.cost(&stats, &s.machine) + entry_time(&stats, s))
+}
+
+/// [`block_time`] with the uncovered area measured exactly rather than estimated: for the
+/// final word between two directions of a block.
+pub fn exact_block_time(
+    area: &MultiPolygon,
+    bearing: f64,
+    s: &SplitMergeSettings,
+) -> Result<f64, PlanError> {
+    let swaths = generate_with(
+        area,
+        &SwathSettings {
+            bearing,
+            width: s.width,
+            min_length: s.min_length,
+            placement: LinePlacement::FromEdge,
+        },
+    )?;
+    let stats = measure(&swaths.swaths, s.width, area, &s.machine);
+    Ok(OperationTime.cost(&stats, &s.machine) + entry_time(&stats, s))
+}
+
+/// The time to reach a block from the one before, seconds: a turn, and on average half a
+/// swath's length, since the side on which the block before ends (by the parity of its
+/// swaths) and the side on which this one starts are as often the same as not.
+fn entry_time(stats: &SwathStats, s: &SplitMergeSettings) -> f64 {
+    let mean = if stats.swath_count > 0 {
+        stats.swath_length_m / stats.swath_count as f64
+    } else {
+        0.0
+    };
+    (turn_length(s.width, s.machine.turn_radius) + mean / 2.0) / s.machine.turning_speed
+}
+
+/// A block's outline simplified for the many estimates of [`block_time`]: Douglas-Peucker to a
+/// tenth of a working width. Borders between blocks are mostly straight, and keep their place
+/// (only vertices in line are dropped there); curved edges, such as the rounded corners of
+/// headlands, lose most of their vertices, which the swath sweep would sort at every estimate.
+pub fn rough(area: &MultiPolygon, s: &SplitMergeSettings) -> MultiPolygon {
+    area.simplify((s.width / 10.0).max(0.01))
+}
+
+/// A join considered: the blocks (slots), the time it saves, and the joined block.
+struct Join {
+    a: usize,
+    b: usize,
+    saving: f64,
+    joined: BlockArea,
+    time: f64,
+}
+
+/// Joins neighbouring blocks while a join saves time (see the module documentation). The
+/// blocks keep their order; a joined block takes the place of the earlier of the two.
+///
+/// ```
+/// use furrow::decompose::join::join_blocks;
+/// use furrow::decompose::split_merge::{Criterion, SplitMergeSettings};
+/// use furrow::decompose::BlockArea;
+/// use furrow::direction::SearchMethod;
+/// use furrow::objective::Machine;
+/// use geo::{polygon, MultiPolygon};
+///
+/// // A 300 x 60 strip cut in two halves worked east-west: one block saves a turn onto the
+/// // second half.
+/// let west = polygon![(x: 0., y: 0.), (x: 150., y: 0.), (x: 150., y: 60.), (x: 0., y: 60.)];
+/// let east = polygon![(x: 150., y: 0.), (x: 300., y: 0.), (x: 300., y: 60.), (x: 150., y: 60.)];
+/// let s = SplitMergeSettings {
+///     width: 6.0, min_length: 6.0,
+///     machine: Machine { width: 6.0, turn_radius: 8.0, working_speed: 2.2, turning_speed: 1.4 },
+///     method: SearchMethod::CoarseToFine, step_deg: 1.0, forbidden: &[], regions: &[],
+///     criterion: Criterion::default(), min_end_angle: 20f64.to_radians(), tolerance: 3.0,
+/// };
+/// let east_west = std::f64::consts::FRAC_PI_2;
+/// let blocks = vec![
+///     BlockArea { area: MultiPolygon::new(vec![west]), bearing: east_west },
+///     BlockArea { area: MultiPolygon::new(vec![east]), bearing: 0.0 },
+/// ];
+/// let joined = join_blocks(blocks, &s)?;
+/// assert_eq!(joined.len(), 1);
+/// assert_eq!(joined[0].bearing, east_west);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn join_blocks(
+    blocks: Vec<BlockArea>,
+    s: &SplitMergeSettings,
+) -> Result<Vec<BlockArea>, PlanError> {
+    let min_area = s.width * s.width * 1e-2;
+    let mut slots: Vec<Option<BlockArea>> = blocks.into_iter().map(Some).collect();
+    let mut roughs: Vec<MultiPolygon> = slots.iter().flatten().map(|b| rough(&b.area, s)).collect();
+    let mut times: Vec<f64> = Vec::with_capacity(slots.len());
+    for (b, r) in slots.iter().flatten().zip(&roughs) {
+        times.push(block_time(r, b.bearing, s)?);
+    }
+    // Blocks that share a border of a width or more; kept up to date as blocks join (the
+    // joined block borders what either did).
+    let all_borders = borders(&blocks_of(&slots), s.width);
+    let mut pairs: Vec<(usize, usize)> = all_borders.iter().map(|b| (b.first, b.second)).collect();
+    pairs.sort_unstable();
+    pairs.dedup();
+    // A block with no swath of its own (a strip narrower than a swath beside an edge that
+    // runs along the direction) is not worth a visit, but the crop in it is: it joins the
+    // neighbour it shares the longest border with, where that neighbour's direction is allowed,
+    // whatever the time.
+    for k in 0..slots.len() {
+        let Some(b) = &slots[k] else {
+            continue;
+        };
+        if swath_count(&roughs[k], b.bearing, s)? > 0 {
+            continue;
+        }
+        let allowed = constraints_in(&b.area, s.regions, s.forbidden, min_area);
+        let mut target: Option<(f64, usize)> = None;
+        for &(x, y) in &pairs {
+            let other = match (x == k, y == k) {
+                (true, _) => y,
+                (_, true) => x,
+                _ => continue,
+            };
+            let Some(o) = &slots[other] else {
+                continue;
+            };
+            if allowed.iter().any(|r| r.forbids(o.bearing)) {
+                continue;
+            }
+            let shared: f64 = all_borders
+                .iter()
+                .filter(|d| (d.first, d.second) == (x, y))
+                .map(|d| d.length())
+                .sum();
+            if target.is_none_or(|(l, _)| shared > l) {
+                target = Some((shared, other));
+            }
+        }
+        let Some((_, other)) = target else {
+            continue;
+        };
+        let (Some(o), Some(b)) = (&slots[other], &slots[k]) else {
+            continue;
+        };
+        let joined = BlockArea {
+            area: outline_of(&side_by_side(&[&o.area, &b.area]), min_area),
+            bearing: o.bearing,
+        };
+        roughs[other] = rough(&joined.area, s);
+        times[other] = block_time(&roughs[other], joined.bearing, s)?;
+        slots[other] = Some(joined);
+        slots[k] = None;
+        rename(&mut pairs, k, other);
+    }
+    // Joins evaluated, by pair of slots; `None` where a join does not fit or saves nothing.
+    let mut cache: Vec<((usize, usize), Option<Join>)> = Vec::new();
+    // Joins of three evaluated that saved nothing.
+    let mut tried: Vec<[usize; 3]> = Vec::new();
+    loop {
+        for &(a, b) in &pairs {
+            if cache.iter().any(|(k, _)| *k == (a, b)) {
+                continue;
+            }
+            let (Some(x), Some(y)) = (&slots[a], &slots[b]) else {
+                continue;
+            };
+            // Evaluated on the two blocks side by side: the swath sweep joins pieces that meet
+            // at the border, so the joined outline is only made for the join chosen.
+            let union = side_by_side(&[&roughs[a], &roughs[b]]);
+            let mut best: Option<Join> = None;
+            if !union.0.is_empty() {
+                let allowed = constraints_in(&union, s.regions, s.forbidden, min_area);
+                for bearing in [x.bearing, y.bearing] {
+                    if allowed.iter().any(|r| r.forbids(bearing)) {
+                        continue;
+                    }
+                    let time = block_time(&union, bearing, s)?;
+                    let saving = times[a] + times[b] - time;
+                    if saving > 1e-6 && best.as_ref().is_none_or(|j| saving > j.saving) {
+                        best = Some(Join {
+                            a,
+                            b,
+                            saving,
+                            joined: BlockArea {
+                                area: side_by_side(&[&x.area, &y.area]),
+                                bearing,
+                            },
+                            time,
+                        });
+                    }
+                }
+            }
+            cache.push(((a, b), best));
+        }
+        let mut pick: Option<usize> = None;
+        for (k, (pair, join)) in cache.iter().enumerate() {
+            let Some(j) = join else {
+                continue;
+            };
+            if !pairs.contains(pair) {
+                continue;
+            }
+            let better = match pick.and_then(|p| cache[p].1.as_ref()) {
+                Some(best) => j.saving > best.saving,
+                None => true,
+            };
+            if better {
+                pick = Some(k);
+            }
+        }
+        let Some(k) = pick else {
+            // No two blocks are faster as one: perhaps a sliver between two blocks of one
+            // direction, which neither takes on its own, joins them into one.
+            let Some((keep, joined, time, gone)) =
+                best_triple(&slots, &roughs, &times, &pairs, s, min_area, &mut tried)?
+            else {
+                break;
+            };
+            tried.retain(|t| !t.contains(&keep) && !t.contains(&gone[0]) && !t.contains(&gone[1]));
+            let area = outline_of(&joined.area, min_area);
+            roughs[keep] = rough(&area, s);
+            slots[keep] = Some(BlockArea {
+                area,
+                bearing: joined.bearing,
+            });
+            times[keep] = time;
+            for g in gone {
+                slots[g] = None;
+                rename(&mut pairs, g, keep);
+            }
+            cache.retain(|((x, y), _)| {
+                ![keep, gone[0], gone[1]].contains(x) && ![keep, gone[0], gone[1]].contains(y)
+            });
+            continue;
+        };
+        let Some(join) = cache.swap_remove(k).1 else {
+            break;
+        };
+        let area = outline_of(&join.joined.area, min_area);
+        roughs[join.a] = rough(&area, s);
+        slots[join.a] = Some(BlockArea {
+            area,
+            bearing: join.joined.bearing,
+        });
+        slots[join.b] = None;
+        times[join.a] = join.time;
+        tried.retain(|t| !t.contains(&join.a) && !t.contains(&join.b));
+        rename(&mut pairs, join.b, join.a);
+        cache.retain(|((x, y), _)| ![join.a, join.b].contains(x) && ![join.a, join.b].contains(y));
+    }
+    Ok(slots.into_iter().flatten().collect())
+}
+
+/// Number of swaths of `area` at `bearing`.
+fn swath_count(
+    area: &MultiPolygon,
+    bearing: f64,
+    s: &SplitMergeSettings,
+) -> Result<usize, PlanError> {
+    Ok(generate_with(
+        area,
+        &SwathSettings {
+            bearing,
+            width: s.width,
+            min_length: s.min_length,
+            placement: LinePlacement::FromEdge,
+        },
+    )?
+    .swaths
+    .len())
+}
+
+/// Blocks side by side: their polygons in one multipolygon, not yet joined.
+fn side_by_side(areas: &[&MultiPolygon]) -> MultiPolygon {
+    MultiPolygon::new(areas.iter().flat_map(|a| a.0.iter().cloned()).collect())
+}
+
+/// The outline of blocks side by side: their union, less the slivers the boolean operation
+/// leaves along the borders. (Blocks from different boolean operations may keep a gap of a
+/// fraction of a millimetre and stay two parts; swath pieces that close are one swath.)
+fn outline_of(side_by_side: &MultiPolygon, min_area: f64) -> MultiPolygon {
+    let union = side_by_side.union(&MultiPolygon::new(vec![]));
+    MultiPolygon::new(
+        union
+            .0
+            .into_iter()
+            .filter(|p| p.unsigned_area() >= min_area)
+            .collect(),
+    )
+}
+
+/// The blocks of the slots, all of them present at the start.
+fn blocks_of(slots: &[Option<BlockArea>]) -> Vec<BlockArea> {
+    slots.iter().flatten().cloned().collect()
+}
+
+/// Pairs of neighbouring slots after slot `from` joined slot `to`: its neighbours are `to`'s.
+fn rename(pairs: &mut Vec<(usize, usize)>, from: usize, to: usize) {
+    for p in pairs.iter_mut() {
+        let r = |x: usize| if x == from { to } else { x };
+        let (a, b) = (r(p.0), r(p.1));
+        *p = (a.min(b), a.max(b));
+    }
+    pairs.retain(|p| p.0 != p.1);
+    pairs.sort_unstable();
+    pairs.dedup();
+}
+
+/// A join of three blocks: the slot it goes in, the joined block, its time, and the two slots
+/// it empties.
+type Triple = (usize, BlockArea, f64, [usize; 2]);
+
+/// The best join of a block with two neighbours of one direction (within a degree) that saves
+/// time: the slot it goes in, the joined block, its time, and the two slots it empties.
+fn best_triple(
+    slots: &[Option<BlockArea>],
+    roughs: &[MultiPolygon],
+    times: &[f64],
+    pairs: &[(usize, usize)],
+    s: &SplitMergeSettings,
+    min_area: f64,
+    tried: &mut Vec<[usize; 3]>,
+) -> Result<Option<Triple>, PlanError> {
+    let mut best: Option<(f64, usize, BlockArea, f64, [usize; 2])> = None;
+    for m in 0..slots.len() {
+        let Some(middle) = &slots[m] else {
+            continue;
+        };
+        let around: Vec<usize> = pairs
+            .iter()
+            .filter_map(|&(a, b)| match (a == m, b == m) {
+                (true, _) => Some(b),
+                (_, true) => Some(a),
+                _ => None,
+            })
+            .collect();
+        for (i, &a) in around.iter().enumerate() {
+            for &b in &around[i + 1..] {
+                let (Some(x), Some(y)) = (&slots[a], &slots[b]) else {
+                    continue;
+                };
+                // Only a block smaller than both is a sliver between them.
+                if middle.area.unsigned_area() > x.area.unsigned_area().min(y.area.unsigned_area())
+                    || tried.contains(&[a, m, b])
+                {
+                    continue;
+                }
+                tried.push([a, m, b]);
+                let d = (x.bearing - y.bearing).rem_euclid(std::f64::consts::PI);
+                if d.min(std::f64::consts::PI - d) > 1f64.to_radians() {
+                    continue;
+                }
+                let union = side_by_side(&[&roughs[a], &roughs[m], &roughs[b]]);
+                if union.0.is_empty() {
+                    continue;
+                }
+                let allowed = constraints_in(&union, s.regions, s.forbidden, min_area);
+                if allowed.iter().any(|r| r.forbids(x.bearing)) {
+                    continue;
+                }
+                let time = block_time(&union, x.bearing, s)?;
+                let saving = times[a] + times[m] + times[b] - time;
+                if saving > 1e-6 && best.as_ref().is_none_or(|t| saving > t.0) {
+                    let mut three = [a, m, b];
+                    three.sort_unstable();
+                    best = Some((
+                        saving,
+                        three[0],
+                        BlockArea {
+                            area: side_by_side(&[&x.area, &middle.area, &y.area]),
+                            bearing: x.bearing,
+                        },
+                        time,
+                        [three[1], three[2]],
+                    ));
+                }
+            }
+        }
+    }
+    Ok(best.map(|(_, keep, joined, time, gone)| (keep, joined, time, gone)))
+}

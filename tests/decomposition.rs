@@ -1,0 +1,260 @@
+//! The decompositions end to end on the corpus (issue 6): on every field and with every
+//! decomposition the blocks partition the inner field and keep the forbidden directions; on the
+//! fields with arms and bays, decomposing beats the best single direction.
+
+mod common;
+
+use common::corpus::{valid_fields, CorpusField};
+use furrow::decompose::Decomposition;
+use furrow::direction::SearchMethod;
+use furrow::headland::PassAround;
+use furrow::{plan_geojson, Plan, PlanOptions};
+use geo::{Area, BooleanOps, Contains, MultiPolygon, Point};
+
+fn plan_with(field: &CorpusField, d: Decomposition) -> Plan {
+    let options = PlanOptions {
+        decomposition: d,
+        ..field.options.clone()
+    };
+    plan_geojson(&field.text(), &options)
+        .unwrap_or_else(|e| panic!("{} ({}): {e}", field.name, d.as_str()))
+}
+
+/// The blocks (areas worked at one direction) cover the inner field without overlapping: their
+/// areas add up to it within 0.1 %, no two overlap, and each lies inside it.
+fn check_partition(plan: &Plan, name: &str) {
+    let inner = &plan.headlands.inner;
+    let inner_area = inner.unsigned_area();
+    let areas: Vec<&MultiPolygon> = plan.swaths.areas.iter().map(|a| &a.area).collect();
+    let sum: f64 = areas.iter().map(|a| a.unsigned_area()).sum();
+    // Prohibited regions whose ranges leave no direction are not worked: not in any block.
+    let unworked: f64 = plan
+        .warnings
+        .iter()
+        .filter(|w| w.code == furrow::WarningCode::RegionNotWorked)
+        .filter_map(|w| w.feature)
+        .filter_map(|f| plan.field.prohibited.iter().find(|r| r.feature == f))
+        .map(|r| {
+            inner
+                .intersection(&MultiPolygon::new(vec![r.polygon.clone()]))
+                .unsigned_area()
+        })
+        .sum();
+    assert!(
+        (sum + unworked - inner_area).abs() <= 1e-3 * inner_area,
+        "{name}: blocks {sum} m² + unworked {unworked} m², inner field {inner_area} m²"
+    );
+    for (i, a) in areas.iter().enumerate() {
+        let outside = a.difference(inner).unsigned_area();
+        assert!(
+            outside <= 1e-4 * inner_area,
+            "{name}: block {i} reaches {outside} m² outside the inner field"
+        );
+        for (j, b) in areas.iter().enumerate().skip(i + 1) {
+            let overlap = a.intersection(*b).unsigned_area();
+            assert!(
+                overlap <= 1e-4 * inner_area,
+                "{name}: blocks {i} and {j} overlap by {overlap} m²"
+            );
+        }
+    }
+}
+
+/// No swath runs in a direction forbidden where it lies: globally, or in a prohibited region its
+/// centre line crosses.
+fn check_forbidden(plan: &Plan, name: &str) {
+    for s in &plan.swaths.swaths {
+        for r in &plan.options.forbidden_bearings_deg {
+            assert!(
+                !r.forbids(s.bearing),
+                "{name}: swath {} at a globally forbidden {}",
+                s.index,
+                s.bearing.to_degrees()
+            );
+        }
+        let line = geo::Line::new(s.centre.start, s.centre.end);
+        for region in &plan.field.prohibited {
+            if !region.forbidden.iter().any(|f| f.forbids(s.bearing)) {
+                continue;
+            }
+            // Inside the region by more than a millimetre: its middle, or a stretch of it.
+            let clipped = region.polygon.clip(
+                &geo::MultiLineString::new(vec![geo::LineString::from(line)]),
+                false,
+            );
+            let inside: f64 = clipped
+                .0
+                .iter()
+                .map(|l| {
+                    use geo::{Euclidean, Length};
+                    Euclidean.length(l)
+                })
+                .sum();
+            assert!(
+                inside < 1e-3,
+                "{name}: swath {} at {:.1} degrees runs {inside} m in a region that forbids it",
+                s.index,
+                s.bearing.to_degrees()
+            );
+        }
+    }
+}
+
+#[test]
+fn blocks_partition_the_inner_field_and_keep_forbidden_directions_on_every_field() {
+    for field in valid_fields() {
+        for d in [
+            Decomposition::None,
+            Decomposition::Boustrophedon,
+            Decomposition::SplitMerge,
+            Decomposition::Auto,
+        ] {
+            let plan = plan_with(&field, d);
+            let name = format!("{} ({})", field.name, d.as_str());
+            check_partition(&plan, &name);
+            check_forbidden(&plan, &name);
+            // Every swath lies in its block.
+            for a in &plan.swaths.areas {
+                for s in &plan.swaths.swaths[a.swaths.clone()] {
+                    let mid = Point((s.centre.start + s.centre.end) / 2.0);
+                    assert!(
+                        a.area.contains(&mid) || a.area.unsigned_area() == 0.0,
+                        "{name}: swath {} outside its block",
+                        s.index
+                    );
+                }
+            }
+            // Passes between blocks lie in the inner field's headland bands, not in the crop.
+            for p in &plan.headlands.passes {
+                if p.around == PassAround::Block {
+                    for w in p.line.0.windows(2) {
+                        let mid = Point((w[0] + w[1]) / 2.0);
+                        let depth = if plan.headlands.inner.contains(&mid) {
+                            use geo::{Distance, Euclidean};
+                            plan.headlands
+                                .inner
+                                .0
+                                .iter()
+                                .map(|q| Euclidean.distance(&mid, q.exterior()))
+                                .fold(f64::INFINITY, f64::min)
+                        } else {
+                            0.0
+                        };
+                        assert!(
+                            depth < 1e-3,
+                            "{name}: a pass between blocks runs {depth} m inside a block"
+                        );
+                    }
+                }
+            }
+            let report = &plan.summary.decomposition;
+            assert_eq!(report.requested, d, "{name}");
+            if d != Decomposition::Auto {
+                assert_eq!(report.method, d, "{name}");
+            } else {
+                // Auto keeps the fastest candidate, and says so.
+                assert_eq!(report.candidates.len(), 3, "{name}");
+                let chosen = report
+                    .candidates
+                    .iter()
+                    .find(|c| c.method == report.method)
+                    .expect("the chosen candidate is listed");
+                assert!(
+                    (chosen.estimated_time_s - plan.summary.estimated_time_s).abs() < 1e-6,
+                    "{name}"
+                );
+                assert!(report.reason.contains(report.method.as_str()), "{name}");
+            }
+        }
+    }
+}
+
+#[test]
+fn decomposing_beats_the_best_single_direction_on_fields_with_arms_and_bays() {
+    let mut rows = Vec::new();
+    for field in valid_fields() {
+        if ![
+            "h-shape",
+            "c-shape-escarpment",
+            "many-bays",
+            "l-shape",
+            "t-shape",
+        ]
+        .contains(&field.name.as_str())
+        {
+            continue;
+        }
+        // The best single direction: a brute-force search at one degree.
+        let single = plan_geojson(
+            &field.text(),
+            &PlanOptions {
+                decomposition: Decomposition::None,
+                search: SearchMethod::BruteForce,
+                ..field.options.clone()
+            },
+        )
+        .expect("plans");
+        let decomposed = plan_with(&field, Decomposition::Auto);
+        assert_ne!(
+            decomposed.summary.decomposition.method,
+            Decomposition::None,
+            "{}: auto kept one direction",
+            field.name
+        );
+        let (a, b) = (
+            single.summary.estimated_time_s,
+            decomposed.summary.estimated_time_s,
+        );
+        assert!(
+            b < a,
+            "{}: decomposed {b:.0} s, one direction {a:.0} s",
+            field.name
+        );
+        // Not by leaving crop: the decomposed plan covers as much of its inner field, within
+        // half a percent (its blocks' ends along borders at an angle leave a little more).
+        let (ca, cb) = (
+            single.summary.objectives.coverage,
+            decomposed.summary.objectives.coverage,
+        );
+        assert!(cb >= ca - 0.005, "{}: covers {cb} against {ca}", field.name);
+        rows.push(field.name.clone());
+    }
+    assert_eq!(rows.len(), 5, "fields missing from the corpus: {rows:?}");
+}
+
+#[test]
+fn split_merge_works_the_arms_of_an_h_along_their_length() {
+    let field = valid_fields()
+        .into_iter()
+        .find(|f| f.name == "h-shape")
+        .expect("h-shape in the corpus");
+    let plan = plan_with(&field, Decomposition::SplitMerge);
+    // Two long arms north-south and the cross block east-west, which ends on the arms'
+    // sides: no headland between them.
+    let mut directions: Vec<f64> = plan
+        .blocks
+        .blocks
+        .iter()
+        .map(|b| {
+            let d = b.bearing.to_degrees().round().rem_euclid(180.0);
+            if d > 135.0 {
+                d - 180.0
+            } else {
+                d
+            }
+        })
+        .collect();
+    directions.sort_by(f64::total_cmp);
+    directions.dedup_by(|a, b| (*a - *b).abs() < 5.0);
+    assert_eq!(directions.len(), 2, "{directions:?}");
+    assert!(directions.iter().any(|d| d.abs() < 5.0));
+    assert!(directions.iter().any(|d| (d - 90.0).abs() < 5.0));
+    assert_eq!(
+        plan.summary
+            .decomposition
+            .candidates
+            .first()
+            .map(|c| c.block_headland_passes),
+        Some(0)
+    );
+}
