@@ -274,3 +274,57 @@ pub fn cut_block_headlands(
     }
     out
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::BearingRange;
+    use geo::polygon;
+    use std::f64::consts::FRAC_PI_2;
+
+    fn block(x0: f64, x1: f64, bearing: f64) -> BlockArea {
+        BlockArea {
+            area: MultiPolygon::new(vec![
+                polygon![(x: x0, y: 0.), (x: x1, y: 0.), (x: x1, y: 60.), (x: x0, y: 60.)],
+            ]),
+            bearing,
+        }
+    }
+
+    #[test]
+    fn a_border_along_either_blocks_swaths_needs_no_headland() {
+        // East-west swaths ending on the side of a block worked north-south.
+        let blocks = [block(0.0, 100.0, 0.0), block(100.0, 200.0, FRAC_PI_2)];
+        let b = borders(&blocks, 6.0);
+        assert_eq!(b.len(), 1);
+        assert!(!needs_headland(
+            &b[0],
+            &blocks,
+            END_TOLERANCE_DEG.to_radians()
+        ));
+        let h = cut_block_headlands(&blocks, 6.0, 2, &[], &[]);
+        assert!(h.passes.is_empty() && h.bands.0.is_empty());
+    }
+
+    #[test]
+    fn the_band_goes_where_driving_along_the_border_is_allowed() {
+        // Both blocks end on the border x = 100 (running north); the later block lies in a
+        // region where north-south driving is forbidden, so the band is cut from the earlier.
+        let blocks = [block(0.0, 100.0, FRAC_PI_2), block(100.0, 200.0, 1.2)];
+        let region = ProhibitedRegion {
+            polygon: polygon![(x: 100., y: 0.), (x: 200., y: 0.), (x: 200., y: 60.), (x: 100., y: 60.)],
+            forbidden: vec![BearingRange {
+                from_deg: 350.0,
+                to_deg: 10.0,
+            }],
+            feature: 1,
+            name: None,
+        };
+        let h = cut_block_headlands(&blocks, 6.0, 1, &[], &[region]);
+        assert_eq!(h.passes.len(), 1);
+        assert!((h.blocks[0].area.unsigned_area() - 94.0 * 60.0).abs() < 1e-6);
+        assert!((h.blocks[1].area.unsigned_area() - 100.0 * 60.0).abs() < 1e-6);
+        // The pass half a width from the border, inside the earlier block.
+        assert!(h.passes[0].line.0.iter().all(|c| (c.x - 97.0).abs() < 1e-6));
+    }
+}

@@ -543,6 +543,45 @@ mod tests {
         assert!((sum - field.unsigned_area()).abs() < 1e-6);
     }
 
+    #[test]
+    fn a_tolerance_keeps_a_curved_edge_from_shattering_the_split() {
+        // A 200 x 100 field whose north edge is a half circle drawn with 180 vertices.
+        let mut pts = vec![Coord { x: 0.0, y: 0.0 }, Coord { x: 200.0, y: 0.0 }];
+        for k in 0..=180 {
+            let t = (k as f64).to_radians();
+            pts.push(Coord {
+                x: 100.0 + 100.0 * t.cos(),
+                y: 100.0 + 100.0 * t.sin(),
+            });
+        }
+        let field = MultiPolygon::new(vec![Polygon::new(LineString::from(pts), vec![])]);
+        let area = field.unsigned_area();
+        let frame = SweepFrame::new(0.0);
+        let exact = split(&field, &frame, 0.0);
+        let simplified = split(&field, &frame, 3.0);
+        assert!(exact.len() > 150, "{} trapezoids", exact.len());
+        assert!(simplified.len() < 20, "{} trapezoids", simplified.len());
+        // Both partition the field exactly: the curved ends follow the arc.
+        for t in [&exact, &simplified] {
+            assert!((total(t) - area).abs() < 1e-6 * area);
+        }
+        // Split and merge's cells: the curve's ends are steep enough in the middle only.
+        let cells = merge(
+            &simplified,
+            &frame,
+            MergeRule::SplitMerge {
+                min_end_angle: 20f64.to_radians(),
+            },
+        );
+        let sum: f64 = cells.iter().map(|c| c.outline.unsigned_area()).sum();
+        assert!((sum - area).abs() < 1e-6 * area);
+        assert!(
+            cells.len() >= 2 && cells.len() < 10,
+            "{} cells",
+            cells.len()
+        );
+    }
+
     proptest! {
         /// On random star-shaped fields with a hole, at random directions, the trapezoids and the
         /// cells partition the field: their areas add up to its area, and cells do not overlap.

@@ -123,8 +123,17 @@ pub fn join_blocks(
     blocks: Vec<BlockArea>,
     s: &SplitMergeSettings,
 ) -> Result<Vec<BlockArea>, PlanError> {
+    Ok(join_blocks_marked(blocks, s)?.0)
+}
+
+/// [`join_blocks`], with a mark for each block that is the join of several.
+pub fn join_blocks_marked(
+    blocks: Vec<BlockArea>,
+    s: &SplitMergeSettings,
+) -> Result<(Vec<BlockArea>, Vec<bool>), PlanError> {
     let min_area = s.width * s.width * 1e-2;
     let mut slots: Vec<Option<BlockArea>> = blocks.into_iter().map(Some).collect();
+    let mut changed = vec![false; slots.len()];
     let mut roughs: Vec<MultiPolygon> = slots.iter().flatten().map(|b| rough(&b.area, s)).collect();
     let mut times: Vec<f64> = Vec::with_capacity(slots.len());
     for (b, r) in slots.iter().flatten().zip(&roughs) {
@@ -183,6 +192,7 @@ pub fn join_blocks(
         roughs[other] = rough(&joined.area, s);
         times[other] = block_time(&roughs[other], joined.bearing, s)?;
         slots[other] = Some(joined);
+        changed[other] = true;
         slots[k] = None;
         rename(&mut pairs, k, other);
     }
@@ -204,7 +214,17 @@ pub fn join_blocks(
             let mut best: Option<Join> = None;
             if !union.0.is_empty() {
                 let allowed = constraints_in(&union, s.regions, s.forbidden, min_area);
-                for bearing in [x.bearing, y.bearing] {
+                // A block much smaller than its neighbour joins at the neighbour's direction;
+                // blocks of a size try both.
+                let (ax, ay) = (x.area.unsigned_area(), y.area.unsigned_area());
+                let bearings: &[f64] = if ax > 2.0 * ay {
+                    &[x.bearing]
+                } else if ay > 2.0 * ax {
+                    &[y.bearing]
+                } else {
+                    &[x.bearing, y.bearing]
+                };
+                for &bearing in bearings {
                     if allowed.iter().any(|r| r.forbids(bearing)) {
                         continue;
                     }
@@ -253,6 +273,7 @@ pub fn join_blocks(
             tried.retain(|t| !t.contains(&keep) && !t.contains(&gone[0]) && !t.contains(&gone[1]));
             let area = outline_of(&joined.area, min_area);
             roughs[keep] = rough(&area, s);
+            changed[keep] = true;
             slots[keep] = Some(BlockArea {
                 area,
                 bearing: joined.bearing,
@@ -272,6 +293,7 @@ pub fn join_blocks(
         };
         let area = outline_of(&join.joined.area, min_area);
         roughs[join.a] = rough(&area, s);
+        changed[join.a] = true;
         slots[join.a] = Some(BlockArea {
             area,
             bearing: join.joined.bearing,
@@ -282,7 +304,13 @@ pub fn join_blocks(
         rename(&mut pairs, join.b, join.a);
         cache.retain(|((x, y), _)| ![join.a, join.b].contains(x) && ![join.a, join.b].contains(y));
     }
-    Ok(slots.into_iter().flatten().collect())
+    let joined: Vec<bool> = slots
+        .iter()
+        .zip(&changed)
+        .filter(|(b, _)| b.is_some())
+        .map(|(_, &c)| c)
+        .collect();
+    Ok((slots.into_iter().flatten().collect(), joined))
 }
 
 /// Number of swaths of `area` at `bearing`.

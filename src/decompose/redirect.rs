@@ -44,10 +44,24 @@ pub fn redirect_blocks(
     blocks: Vec<BlockArea>,
     s: &SplitMergeSettings,
 ) -> Result<(Vec<BlockArea>, usize), PlanError> {
+    let all = vec![true; blocks.len()];
+    redirect_some(blocks, &all, s)
+}
+
+/// [`redirect_blocks`] for the blocks marked in `which` only (the others keep their direction).
+pub fn redirect_some(
+    blocks: Vec<BlockArea>,
+    which: &[bool],
+    s: &SplitMergeSettings,
+) -> Result<(Vec<BlockArea>, usize), PlanError> {
     let min_area = s.width * s.width * 1e-2;
     let mut evaluations = 0;
     let mut out = Vec::with_capacity(blocks.len());
-    for mut b in blocks {
+    for (k, mut b) in blocks.into_iter().enumerate() {
+        if !which.get(k).copied().unwrap_or(true) {
+            out.push(b);
+            continue;
+        }
         let allowed = constraints_in(&b.area, s.regions, s.forbidden, min_area);
         let estimate = rough(&b.area, s);
         let current = if allowed.iter().any(|r| r.forbids(b.bearing)) {
