@@ -306,7 +306,7 @@ export interface DirectionReport {
   method: SearchMethod | null;
   /** The objective minimised, by which `cost` is measured. */
   objective: ObjectiveName;
-  /** Directions evaluated, the field's and its prohibited regions'. */
+  /** Directions evaluated: the field's, its prohibited regions', and with split and merge its blocks'. */
   evaluations: number;
   /** The objective's cost of the plan's swaths (seconds for `"time"`). */
   cost: number;

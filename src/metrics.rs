@@ -142,7 +142,8 @@ pub struct DirectionReport {
     pub method: Option<SearchMethod>,
     /// The objective minimised (and by which `cost` is measured).
     pub objective: &'static str,
-    /// Number of directions evaluated (the field's and its prohibited regions').
+    /// Number of directions evaluated (the field's, its prohibited regions', and with split
+    /// and merge its blocks').
     pub evaluations: usize,
     /// The objective's cost of the plan's swaths.
     pub cost: f64,

@@ -2,6 +2,8 @@
 //! decomposition the blocks partition the inner field and keep the forbidden directions; on the
 //! fields with arms and bays, decomposing beats the best single direction.
 
+#![allow(clippy::result_large_err)] // PlanError is a plain struct with its place in the input
+
 mod common;
 
 use common::corpus::{valid_fields, CorpusField};
@@ -257,4 +259,59 @@ fn split_merge_works_the_arms_of_an_h_along_their_length() {
             .map(|c| c.block_headland_passes),
         Some(0)
     );
+}
+
+#[test]
+fn split_merge_needs_a_searched_direction_and_the_headland_all_around() {
+    let field = valid_fields()
+        .into_iter()
+        .find(|f| f.name == "l-shape")
+        .expect("l-shape in the corpus");
+    let text = field.text();
+    let with = |o: PlanOptions| plan_geojson(&text, &o);
+    let base = PlanOptions {
+        decomposition: Decomposition::SplitMerge,
+        ..field.options.clone()
+    };
+    for o in [
+        PlanOptions {
+            bearing_deg: Some(30.0),
+            ..base.clone()
+        },
+        PlanOptions {
+            direction: Some(furrow::direction::DirectionMode::LongestEdge),
+            ..base.clone()
+        },
+        PlanOptions {
+            headland_mode: furrow::headland::HeadlandMode::Needed,
+            ..base.clone()
+        },
+    ] {
+        let e = with(o).expect_err("refused");
+        assert_eq!(e.code, furrow::ErrorCode::InvalidOption, "{e}");
+        assert!(e.message.contains("split-merge"), "{e}");
+    }
+    // Auto then compares the decompositions of one direction only.
+    for o in [
+        PlanOptions {
+            bearing_deg: Some(30.0),
+            decomposition: Decomposition::Auto,
+            ..base.clone()
+        },
+        PlanOptions {
+            headland_mode: furrow::headland::HeadlandMode::Needed,
+            decomposition: Decomposition::Auto,
+            ..base.clone()
+        },
+    ] {
+        let plan = with(o).expect("plans");
+        let methods: Vec<Decomposition> = plan
+            .summary
+            .decomposition
+            .candidates
+            .iter()
+            .map(|c| c.method)
+            .collect();
+        assert_eq!(methods, [Decomposition::None, Decomposition::Boustrophedon]);
+    }
 }
