@@ -134,27 +134,10 @@ pub fn search_direction(
     step_deg: f64,
     forbidden: &[BearingRange],
     seeds: &[f64],
-    mut cost: impl FnMut(f64) -> f64,
+    cost: impl FnMut(f64) -> f64,
 ) -> Result<SearchResult, PlanError> {
-    let no_direction = || {
-        PlanError::new(
-            ErrorCode::NoAllowedDirection,
-            "the forbidden bearing ranges forbid every driving direction",
-        )
-    };
-    let mut evaluated: Vec<(f64, f64)> = Vec::new();
-    let mut eval = |b: f64, evaluated: &mut Vec<(f64, f64)>| {
-        if evaluated.iter().any(|e| (e.0 - b).abs() < 1e-9) {
-            return;
-        }
-        let c = cost(b);
-        evaluated.push((b, if c.is_nan() { f64::INFINITY } else { c }));
-    };
-    for &seed in seeds {
-        if let Some(b) = nearest_allowed(seed, forbidden) {
-            eval(b, &mut evaluated);
-        }
-    }
+    let mut e = Evaluated::new(cost);
+    e.seeds(seeds, forbidden);
     match method {
         SearchMethod::BruteForce => {
             let step = step_deg.clamp(1e-3, 180.0);
@@ -163,51 +146,96 @@ pub fn search_direction(
             for k in 0..n {
                 let b = (k as f64 * step).to_radians();
                 if allowed(b) {
-                    eval(b, &mut evaluated);
+                    e.eval(b);
                 }
             }
             for b in allowed_range_ends(forbidden) {
-                eval(b, &mut evaluated);
+                e.eval(b);
             }
         }
         SearchMethod::CoarseToFine => {
             let mut step = 30.0f64;
             for k in 0..6 {
                 let b = (k as f64 * step).to_radians();
-                eval(
-                    nearest_allowed(b, forbidden).ok_or_else(no_direction)?,
-                    &mut evaluated,
-                );
+                e.eval(nearest_allowed(b, forbidden).ok_or_else(no_direction)?);
             }
             while step >= 1.0 {
-                let mut ranked = evaluated.clone();
+                let mut ranked = e.list.clone();
                 ranked.sort_by(|a, b| a.1.total_cmp(&b.1));
                 step /= 2.0;
                 for &(b, _) in ranked.iter().take(3) {
                     for side in [-1.0, 1.0] {
                         let c = b + side * step.to_radians();
-                        eval(
-                            nearest_allowed(c, forbidden).ok_or_else(no_direction)?,
-                            &mut evaluated,
-                        );
+                        e.eval(nearest_allowed(c, forbidden).ok_or_else(no_direction)?);
                     }
                 }
             }
         }
     }
-    // The first of the lowest: ties go to the direction evaluated first.
-    let mut best: Option<(f64, f64)> = None;
-    for &(b, c) in &evaluated {
-        if best.is_none_or(|(_, bc)| c < bc) {
-            best = Some((b, c));
+    e.result()
+}
+
+/// The error of a search that finds every direction forbidden.
+fn no_direction() -> PlanError {
+    PlanError::new(
+        ErrorCode::NoAllowedDirection,
+        "the forbidden bearing ranges forbid every driving direction",
+    )
+}
+
+/// The directions a search evaluated, each once, with their costs (NaN counts as infinite).
+struct Evaluated<F: FnMut(f64) -> f64> {
+    cost: F,
+    list: Vec<(f64, f64)>,
+}
+
+impl<F: FnMut(f64) -> f64> Evaluated<F> {
+    fn new(cost: F) -> Self {
+        Evaluated {
+            cost,
+            list: Vec::new(),
         }
     }
-    let (bearing, cost) = best.ok_or_else(no_direction)?;
-    Ok(SearchResult {
-        bearing,
-        cost,
-        evaluations: evaluated.len(),
-    })
+
+    /// Evaluates a swath direction, unless it was.
+    fn eval(&mut self, b: f64) {
+        let b = swath_direction(b);
+        if self.list.iter().any(|e| (e.0 - b).abs() < 1e-9) {
+            return;
+        }
+        let c = (self.cost)(b);
+        self.list
+            .push((b, if c.is_nan() { f64::INFINITY } else { c }));
+    }
+
+    /// Evaluates the seeds, each moved to the nearest allowed direction.
+    fn seeds(&mut self, seeds: &[f64], forbidden: &[BearingRange]) {
+        for &seed in seeds {
+            if let Some(b) = nearest_allowed(seed, forbidden) {
+                self.eval(b);
+            }
+        }
+    }
+
+    /// The first of the lowest: ties go to the direction evaluated first.
+    fn best(&self) -> Option<(f64, f64)> {
+        let mut best: Option<(f64, f64)> = None;
+        for &(b, c) in &self.list {
+            if best.is_none_or(|(_, bc)| c < bc) {
+                best = Some((b, c));
+            }
+        }
+        best
+    }
+
+    fn result(self) -> Result<SearchResult, PlanError> {
+        let (bearing, cost) = self.best().ok_or_else(no_direction)?;
+        Ok(SearchResult {
+            bearing,
+            cost,
+            evaluations: self.list.len(),
+        })
+    }
 }
 
 /// A quick search for the many small searches of a decomposition (a direction for each block):
@@ -229,61 +257,31 @@ pub fn quick_search(
     step_deg: f64,
     forbidden: &[BearingRange],
     seeds: &[f64],
-    mut cost: impl FnMut(f64) -> f64,
+    cost: impl FnMut(f64) -> f64,
 ) -> Result<SearchResult, PlanError> {
     if method == SearchMethod::BruteForce {
         return search_direction(method, step_deg, forbidden, seeds, cost);
     }
-    let mut evaluated: Vec<(f64, f64)> = Vec::new();
-    let mut eval = |b: f64, evaluated: &mut Vec<(f64, f64)>| {
-        let b = swath_direction(b);
-        if evaluated.iter().any(|e| (e.0 - b).abs() < 1e-9) {
-            return;
-        }
-        let c = cost(b);
-        evaluated.push((b, if c.is_nan() { f64::INFINITY } else { c }));
-    };
-    for &seed in seeds {
-        if let Some(b) = nearest_allowed(seed, forbidden) {
-            eval(b, &mut evaluated);
-        }
-    }
+    let mut e = Evaluated::new(cost);
+    e.seeds(seeds, forbidden);
     for k in 0..6 {
         if let Some(b) = nearest_allowed((k as f64 * 30.0).to_radians(), forbidden) {
-            eval(b, &mut evaluated);
+            e.eval(b);
         }
     }
-    let best = |evaluated: &[(f64, f64)]| {
-        evaluated
-            .iter()
-            .fold(None, |acc: Option<(f64, f64)>, &(b, c)| match acc {
-                Some((_, bc)) if bc <= c => acc,
-                _ => Some((b, c)),
-            })
-    };
     let mut step = 30.0f64;
     while step >= 1.0 {
         step /= 2.0;
-        let Some((b, _)) = best(&evaluated) else {
+        let Some((b, _)) = e.best() else {
             break;
         };
         for side in [-1.0, 1.0] {
             if let Some(c) = nearest_allowed(b + side * step.to_radians(), forbidden) {
-                eval(c, &mut evaluated);
+                e.eval(c);
             }
         }
     }
-    let (bearing, cost) = best(&evaluated).ok_or_else(|| {
-        PlanError::new(
-            ErrorCode::NoAllowedDirection,
-            "the forbidden bearing ranges forbid every driving direction",
-        )
-    })?;
-    Ok(SearchResult {
-        bearing,
-        cost,
-        evaluations: evaluated.len(),
-    })
+    e.result()
 }
 
 /// How the driving direction is chosen.

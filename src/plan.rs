@@ -451,6 +451,32 @@ fn minutes(seconds: f64) -> String {
     }
 }
 
+/// The swaths of an area worked at a direction of its own (a block, or a prohibited region),
+/// the first line half a width inside it, as one area.
+fn area_swaths(
+    area: geo::MultiPolygon,
+    bearing: f64,
+    region: Option<usize>,
+    options: &PlanOptions,
+) -> Result<Swaths, PlanError> {
+    let mut own = generate_with(
+        &area,
+        &SwathSettings {
+            bearing,
+            width: options.width,
+            min_length: options.min_swath_length_m(),
+            placement: LinePlacement::FromEdge,
+        },
+    )?;
+    own.areas.push(SwathArea {
+        swaths: 0..own.swaths.len(),
+        bearing,
+        region,
+        area,
+    });
+    Ok(own)
+}
+
 /// An empty set of swaths at a direction.
 fn no_swaths(bearing: f64, width: f64) -> Swaths {
     Swaths {
@@ -559,22 +585,7 @@ fn work(
             width,
         );
         for b in cut.blocks {
-            let mut own = generate_with(
-                &b.area,
-                &SwathSettings {
-                    bearing: b.bearing,
-                    width,
-                    min_length: options.min_swath_length_m(),
-                    placement: LinePlacement::FromEdge,
-                },
-            )?;
-            own.areas.push(SwathArea {
-                swaths: 0..own.swaths.len(),
-                bearing: b.bearing,
-                region: None,
-                area: b.area,
-            });
-            swaths.append(own);
+            swaths.append(area_swaths(b.area, b.bearing, None, options)?);
         }
     } else {
         let bearing = prep.bearing;
@@ -622,22 +633,12 @@ fn work(
             }
             let best = search_area(&part.area, &part.forbidden, search)?;
             evaluations += best.evaluations;
-            let mut own = generate_with(
-                &part.area,
-                &SwathSettings {
-                    bearing: best.bearing,
-                    width,
-                    min_length: options.min_swath_length_m(),
-                    placement: LinePlacement::FromEdge,
-                },
-            )?;
-            own.areas.push(SwathArea {
-                swaths: 0..own.swaths.len(),
-                bearing: best.bearing,
-                region: Some(part.region),
-                area: part.area,
-            });
-            swaths.append(own);
+            swaths.append(area_swaths(
+                part.area,
+                best.bearing,
+                Some(part.region),
+                options,
+            )?);
             warnings.push(
                 Warning::new(
                     WarningCode::RegionOwnDirection,

@@ -15,7 +15,7 @@ use super::BlockArea;
 use crate::error::PlanError;
 use crate::objective::{measure, measure_turns, turn_length, Objective, OperationTime, SwathStats};
 use crate::prohibited::constraints_in;
-use crate::swath::{generate_with, LinePlacement, SwathSettings};
+use crate::swath::{generate_with, LinePlacement, Swath, SwathSettings};
 use geo::{Area, BooleanOps, MultiPolygon, Simplify};
 
 /// Estimated time (seconds) to work `area` as one block at swath direction `bearing`: swaths,
@@ -26,16 +26,8 @@ pub fn block_time(
     bearing: f64,
     s: &SplitMergeSettings,
 ) -> Result<f64, PlanError> {
-    let swaths = generate_with(
-        area,
-        &SwathSettings {
-            bearing,
-            width: s.width,
-            min_length: s.min_length,
-            placement: LinePlacement::FromEdge,
-        },
-    )?;
-    let stats = measure_turns(&swaths.swaths, s.width, area.unsigned_area(), &s.machine);
+    let swaths = block_swaths(area, bearing, s)?;
+    let stats = measure_turns(&swaths, s.width, area.unsigned_area(), &s.machine);
     Ok(OperationTime.cost(&stats, &s.machine) + entry_time(&stats, s))
 }
 
@@ -46,17 +38,24 @@ pub fn exact_block_time(
     bearing: f64,
     s: &SplitMergeSettings,
 ) -> Result<f64, PlanError> {
-    let swaths = generate_with(
-        area,
-        &SwathSettings {
-            bearing,
-            width: s.width,
-            min_length: s.min_length,
-            placement: LinePlacement::FromEdge,
-        },
-    )?;
-    let stats = measure(&swaths.swaths, s.width, area, &s.machine);
+    let swaths = block_swaths(area, bearing, s)?;
+    let stats = measure(&swaths, s.width, area, &s.machine);
     Ok(OperationTime.cost(&stats, &s.machine) + entry_time(&stats, s))
+}
+
+/// The swaths of `area` as a block of its own at `bearing` (the first line half a width in).
+fn block_swaths(
+    area: &MultiPolygon,
+    bearing: f64,
+    s: &SplitMergeSettings,
+) -> Result<Vec<Swath>, PlanError> {
+    let settings = SwathSettings {
+        bearing,
+        width: s.width,
+        min_length: s.min_length,
+        placement: LinePlacement::FromEdge,
+    };
+    Ok(generate_with(area, &settings)?.swaths)
 }
 
 /// The time to reach a block from the one before, seconds: a turn, and on average half a
@@ -319,17 +318,7 @@ fn swath_count(
     bearing: f64,
     s: &SplitMergeSettings,
 ) -> Result<usize, PlanError> {
-    Ok(generate_with(
-        area,
-        &SwathSettings {
-            bearing,
-            width: s.width,
-            min_length: s.min_length,
-            placement: LinePlacement::FromEdge,
-        },
-    )?
-    .swaths
-    .len())
+    Ok(block_swaths(area, bearing, s)?.len())
 }
 
 /// Blocks side by side: their polygons in one multipolygon, not yet joined.
