@@ -452,14 +452,34 @@ fn best_cell(
     } else {
         0.0
     };
+    // Largest first: the score is bounded by the area (efficiency is at most 1), so once a cell
+    // scores well the smaller ones that cannot beat it are not counted.
+    let c = &s.criterion;
+    let substantial = left_m2 * c.substantial_share.clamp(1e-6, 1.0);
+    let mut by_area: Vec<(f64, usize)> = cells
+        .iter()
+        .enumerate()
+        .map(|(i, cell)| {
+            let a: f64 = cell
+                .iter()
+                .filter_map(|&t| trapezoids.get(t))
+                .map(Trapezoid::area)
+                .sum();
+            (a, i)
+        })
+        .filter(|&(a, _)| a >= small_cell(s))
+        .collect();
+    by_area.sort_unstable_by(|x, y| y.0.total_cmp(&x.0).then(x.1.cmp(&y.1)));
     let mut best: Option<(f64, usize)> = None;
-    for (i, cell) in cells.iter().enumerate() {
-        let work = cell_work(&trapezoids, cell, s);
-        if work.area_m2 < small_cell(s) {
-            continue;
+    for (a, i) in by_area {
+        let bound = c.efficiency + (c.area + c.distance) * (a / substantial).min(1.0) + bonus;
+        if best.is_some_and(|(b, _)| bound < b) {
+            break;
         }
+        let work = cell_work(&trapezoids, &cells[i], s);
         let score = score(&work, left_m2, s) + bonus;
-        if best.is_none_or(|(b, _)| score > b) {
+        // Ties go to the cell found first across the field, whatever the order of counting.
+        if best.is_none_or(|(b, bi)| score > b || (score == b && i < bi)) {
             best = Some((score, i));
         }
     }
