@@ -487,6 +487,7 @@ test("viewer: direction search, objective and the figures it reports", { timeout
     // cross block east-west.
     assert.match(await dd("decomposition").innerText(), /^Direction per block, [23] directions \(fastest; /);
     const decomposed = s.estimated_time_s;
+    await page.screenshot({ path: join(SHOTS, "viewer-h-shape-blocks.png") });
     await page.selectOption("#decomposition", "none");
     await ready(page);
     s = await summary();

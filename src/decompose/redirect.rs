@@ -15,6 +15,9 @@ use crate::direction::{edge_directions, quick_search};
 use crate::error::PlanError;
 use crate::prohibited::constraints_in;
 
+/// The share of a block's time a new direction must save.
+const MIN_SAVING: f64 = 0.01;
+
 /// Gives each block the direction at which it is worked fastest (see the module documentation);
 /// returns the blocks and the number of directions evaluated.
 ///
@@ -97,10 +100,12 @@ pub fn redirect_some(
             // The estimate takes strips reaching over the edge for crop worked: the exact
             // coverage has the last word.
             let forbidden_now = allowed.iter().any(|x| x.forbids(b.bearing));
-            if r.cost < current - 1e-6
-                && (forbidden_now
-                    || exact_block_time(&b.area, r.bearing, s)?
-                        < exact_block_time(&b.area, b.bearing, s)? - 1e-6)
+            // A block changes direction for a real saving only: a degree or two off the edge it
+            // was cut along looks wrong to a driver, and saves next to nothing.
+            if forbidden_now
+                || (r.cost < current * (1.0 - MIN_SAVING)
+                    && exact_block_time(&b.area, r.bearing, s)?
+                        < exact_block_time(&b.area, b.bearing, s)? * (1.0 - MIN_SAVING))
             {
                 b.bearing = r.bearing;
             }

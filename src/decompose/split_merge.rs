@@ -6,7 +6,9 @@
 //! direction); every cell is scored by the weighted criterion of 2.5 and the direction's cost is
 //! that of its best cell. The direction search (coarse-to-fine, 2.6, or brute force) finds the
 //! best direction, its best cell becomes a block, is removed from the area, and the search runs
-//! again on what is left until all of it is covered. Prohibited regions (2.8) take part in the
+//! again on what is left until all of it is covered. Where an edge direction (or one already
+//! chosen) within two degrees of the best scores nearly as well, the block takes it: drivers
+//! work along an edge where they can. Prohibited regions (2.8) take part in the
 //! split: at a direction a region forbids it is an obstacle, so no block of that direction
 //! reaches into it.
 //!
@@ -106,6 +108,9 @@ pub struct SplitMerge {
     /// were left out of the area.
     pub not_worked: Vec<usize>,
 }
+
+/// How much worse (in score, 0 to 1) an edge direction near the best may be and still be taken.
+const EDGE_PREFERENCE: f64 = 0.01;
 
 /// Most directions of blocks already chosen that seed the search for the next block.
 const CHOSEN_SEEDS: usize = 4;
@@ -207,9 +212,30 @@ pub fn split_merge(area: &MultiPolygon, s: &SplitMergeSettings) -> Result<SplitM
         let best = match found {
             Ok(r) if r.cost.is_finite() => {
                 out.evaluations += r.evaluations;
-                let i = prepared_at(&mut cut_cache, &remaining, r.bearing, s);
-                best_cell(&cut_cache[i].1 .0, r.bearing, left, &chosen, s)
-                    .map(|(_, p)| (r.bearing, p))
+                // Drivers work along an edge where they can: an edge direction (or one already
+                // chosen) within two degrees of the best that scores nearly as well is taken.
+                let mut bearing = r.bearing;
+                let mut best_cost = r.cost;
+                for &seed in &seeds {
+                    let Some(b) = nearest_allowed(seed, s.forbidden) else {
+                        continue;
+                    };
+                    let d = (b - r.bearing).rem_euclid(PI);
+                    if d.min(PI - d) > 2f64.to_radians() || (b - r.bearing).abs() < 1e-12 {
+                        continue;
+                    }
+                    let i = prepared_at(&mut cut_cache, &remaining, b, s);
+                    out.evaluations += 1;
+                    if let Some((score, _)) = best_cell(&cut_cache[i].1 .1, b, left, &chosen, s) {
+                        let cost = 1.0 - score;
+                        if cost <= r.cost + EDGE_PREFERENCE && cost < best_cost + EDGE_PREFERENCE {
+                            bearing = b;
+                            best_cost = cost.min(best_cost);
+                        }
+                    }
+                }
+                let i = prepared_at(&mut cut_cache, &remaining, bearing, s);
+                best_cell(&cut_cache[i].1 .0, bearing, left, &chosen, s).map(|(_, p)| (bearing, p))
             }
             Ok(r) => {
                 out.evaluations += r.evaluations;
