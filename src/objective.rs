@@ -525,6 +525,22 @@ mod tests {
     }
 
     #[test]
+    fn moves_between_blocks_are_counted_apart() {
+        // Two 30 x 100 strips 100 m apart along the lines: two blocks of five swaths.
+        let strips = MultiPolygon::new(vec![
+            polygon![(x: 0., y: 0.), (x: 30., y: 0.), (x: 30., y: 100.), (x: 0., y: 100.)],
+            polygon![(x: 0., y: 200.), (x: 30., y: 200.), (x: 30., y: 300.), (x: 0., y: 300.)],
+        ]);
+        let m = machine();
+        let swaths = generate(&strips, 0.0, 6.0, 6.0).unwrap();
+        let s = measure(&swaths.swaths, 6.0, &strips, &m);
+        let turn = turn_length(6.0, m.turn_radius);
+        assert_eq!(s.turn_count, 8 + 1);
+        assert!((s.block_change_m - (turn + 100.0)).abs() < 1e-9);
+        assert!((s.turning_distance_m - s.block_change_m - 8.0 * turn).abs() < 1e-9);
+    }
+
+    #[test]
     fn loop_turn_meets_u_turn_at_twice_the_radius() {
         let r = 8.0;
         assert!((turn_length(2.0 * r - 1e-9, r) - turn_length(2.0 * r, r)).abs() < 1e-3);

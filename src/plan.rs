@@ -18,7 +18,7 @@ use crate::direction::{
 };
 use crate::error::{ErrorCode, PlanError, Warning, WarningCode};
 use crate::field::simplify::tolerance_for_width;
-use crate::field::Field;
+use crate::field::{Field, ProhibitedRegion};
 use crate::geometry::forbids_every_direction;
 use crate::geometry::SweepFrame;
 use crate::headland::edges::{passes_per_edge, EdgeRule};
@@ -258,16 +258,6 @@ pub(crate) fn plan_stages(
         },
     )
     .map_err(|e| e.at_feature(field.feature))?;
-    let prepared = Prepared {
-        mode,
-        bearing,
-        placement,
-        evaluations,
-        search_cost,
-        objective: objective.as_ref(),
-        search: &search,
-        headlands,
-    };
     // Split and merge gives blocks their own directions, so their swaths may end on any edge:
     // it needs the field headland all around. (Only where needed, the headland follows the
     // field's one direction.)
@@ -286,6 +276,27 @@ pub(crate) fn plan_stages(
         ],
         Decomposition::Auto => vec![Decomposition::None, Decomposition::Boustrophedon],
         m => vec![m],
+    };
+    let single = if methods.iter().any(|&m| m != Decomposition::SplitMerge) {
+        Some(single_direction(
+            &field,
+            options,
+            &headlands.inner,
+            bearing,
+            placement,
+            &search,
+        )?)
+    } else {
+        None
+    };
+    let prepared = Prepared {
+        mode,
+        bearing,
+        evaluations,
+        search_cost,
+        objective: objective.as_ref(),
+        headlands,
+        single,
     };
     let mut candidates: Vec<Worked> = Vec::with_capacity(methods.len());
     for &m in &methods {
@@ -377,12 +388,12 @@ pub(crate) fn plan_stages(
 struct Prepared<'a> {
     mode: DirectionMode,
     bearing: f64,
-    placement: LinePlacement,
     evaluations: usize,
     search_cost: Option<f64>,
     objective: &'a dyn Objective,
-    search: &'a AreaSearch<'a>,
     headlands: Headlands,
+    /// The swaths at the field's direction, when a single-direction decomposition is planned.
+    single: Option<SingleDirection>,
 }
 
 /// A plan from the decomposition on.
@@ -451,6 +462,97 @@ fn minutes(seconds: f64) -> String {
     }
 }
 
+/// The swaths at the field's one direction before any decomposition, shared by `none` and
+/// `boustrophedon`: those of the inner field less the prohibited regions that forbid the
+/// direction (`main`, of `main_area`), and those of each such region at its own best direction.
+struct SingleDirection {
+    main_area: geo::MultiPolygon,
+    main: Swaths,
+    regions: Vec<Swaths>,
+    warnings: Vec<Warning>,
+    evaluations: usize,
+}
+
+/// Lays the swaths of the inner field at `bearing` (see [`SingleDirection`]).
+fn single_direction(
+    field: &Field,
+    options: &PlanOptions,
+    inner: &geo::MultiPolygon,
+    bearing: f64,
+    placement: LinePlacement,
+    search: &AreaSearch,
+) -> Result<SingleDirection, PlanError> {
+    // Prohibited regions that forbid the direction are cut out and worked in their own.
+    let cut = forbidding(&field.prohibited, bearing);
+    let (main_area, parts) = if cut.is_empty() {
+        (inner.clone(), Vec::new())
+    } else {
+        split(
+            inner,
+            &field.prohibited,
+            &cut,
+            &options.forbidden_bearings_deg,
+        )
+    };
+    let main = generate_with(
+        &main_area,
+        &SwathSettings {
+            bearing,
+            width: options.width,
+            min_length: options.min_swath_length_m(),
+            placement,
+        },
+    )?;
+    let mut out = SingleDirection {
+        main_area,
+        main,
+        regions: Vec::new(),
+        warnings: Vec::new(),
+        evaluations: 0,
+    };
+    for part in parts {
+        let region = &field.prohibited[part.region];
+        if forbids_every_direction(&part.forbidden) {
+            out.warnings.push(region_not_worked(region));
+            continue;
+        }
+        let best = search_area(&part.area, &part.forbidden, search)?;
+        out.evaluations += best.evaluations;
+        out.regions.push(area_swaths(
+            part.area,
+            best.bearing,
+            Some(part.region),
+            options,
+        )?);
+        out.warnings.push(
+            Warning::new(
+                WarningCode::RegionOwnDirection,
+                format!(
+                    "{} forbids the field's direction of {:.1} degrees; it is worked at {:.1} degrees",
+                    region.subject(),
+                    bearing.to_degrees(),
+                    best.bearing.to_degrees()
+                ),
+            )
+            .at_feature(region.feature),
+        );
+    }
+    Ok(out)
+}
+
+/// The warning for a prohibited region whose ranges, with the others that hold in it, leave no
+/// direction.
+fn region_not_worked(region: &ProhibitedRegion) -> Warning {
+    Warning::new(
+        WarningCode::RegionNotWorked,
+        format!(
+            "{} and the other forbidden ranges that hold in it leave no driving direction; it gets no swaths",
+            region.subject()
+        ),
+    )
+    .at_feature(region.feature)
+}
+
 /// The swaths of an area worked at a direction of its own (a block, or a prohibited region),
 /// the first line half a width inside it, as one area.
 fn area_swaths(
@@ -501,7 +603,6 @@ fn work(
 ) -> Result<Worked, PlanError> {
     let width = options.width;
     let forbidden = &options.forbidden_bearings_deg;
-    let search = prep.search;
     let mut headlands = prep.headlands.clone();
     let mut warnings: Vec<Warning> = Vec::new();
     let mut evaluations = prep.evaluations;
@@ -553,20 +654,12 @@ fn work(
         };
         decomposition_evaluations = sm.evaluations;
         evaluations += sm.evaluations;
-        for &r in &sm.not_worked {
-            if let Some(region) = field.prohibited.get(r) {
-                warnings.push(
-                    Warning::new(
-                        WarningCode::RegionNotWorked,
-                        format!(
-                            "{} with the other forbidden ranges leaves no direction; it gets no swaths",
-                            region.subject()
-                        ),
-                    )
-                    .at_feature(region.feature),
-                );
-            }
-        }
+        warnings.extend(
+            sm.not_worked
+                .iter()
+                .filter_map(|&r| field.prohibited.get(r))
+                .map(region_not_worked),
+        );
         let cut = cut_block_headlands(
             &sm.blocks,
             width,
@@ -588,70 +681,29 @@ fn work(
             swaths.append(area_swaths(b.area, b.bearing, None, options)?);
         }
     } else {
-        let bearing = prep.bearing;
-        // Prohibited regions that forbid the direction are cut out and worked in their own.
-        let cut = forbidding(&field.prohibited, bearing);
-        let (main_area, parts) = if cut.is_empty() {
-            (headlands.inner.clone(), Vec::new())
-        } else {
-            split(&headlands.inner, &field.prohibited, &cut, forbidden)
+        let Some(single) = &prep.single else {
+            return Err(PlanError::new(
+                ErrorCode::Internal,
+                "a single-direction plan without its swaths",
+            ));
         };
-        swaths = generate_with(
-            &main_area,
-            &SwathSettings {
-                bearing,
-                width,
-                min_length: options.min_swath_length_m(),
-                placement: prep.placement,
-            },
-        )?;
+        swaths = single.main.clone();
         if method == Decomposition::Boustrophedon {
-            let cells = boustrophedon::decompose(&main_area, bearing, tolerance);
+            let cells = boustrophedon::decompose(&single.main_area, prep.bearing, tolerance);
             cluster_into_cells(&mut swaths, &cells);
         } else {
             swaths.areas.push(SwathArea {
                 swaths: 0..swaths.swaths.len(),
-                bearing,
+                bearing: prep.bearing,
                 region: None,
-                area: main_area,
+                area: single.main_area.clone(),
             });
         }
-        for part in parts {
-            let region = &field.prohibited[part.region];
-            if forbids_every_direction(&part.forbidden) {
-                warnings.push(
-                    Warning::new(
-                        WarningCode::RegionNotWorked,
-                        format!(
-                            "{} forbids the field's direction, and with the other forbidden ranges no direction is left for it; it gets no swaths",
-                            region.subject()
-                        ),
-                    )
-                    .at_feature(region.feature),
-                );
-                continue;
-            }
-            let best = search_area(&part.area, &part.forbidden, search)?;
-            evaluations += best.evaluations;
-            swaths.append(area_swaths(
-                part.area,
-                best.bearing,
-                Some(part.region),
-                options,
-            )?);
-            warnings.push(
-                Warning::new(
-                    WarningCode::RegionOwnDirection,
-                    format!(
-                        "{} forbids the field's direction of {:.1} degrees; it is worked at {:.1} degrees",
-                        region.subject(),
-                        bearing.to_degrees(),
-                        best.bearing.to_degrees()
-                    ),
-                )
-                .at_feature(region.feature),
-            );
+        for own in &single.regions {
+            swaths.append(own.clone());
         }
+        warnings.extend(single.warnings.iter().cloned());
+        evaluations += single.evaluations;
     }
     let small: Vec<(usize, &geo::Polygon)> = field
         .obstacles

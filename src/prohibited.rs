@@ -125,25 +125,10 @@ pub fn split(
         if part.unsigned_area() < TOUCH_AREA_M2 {
             continue;
         }
-        let mut forbidden: Vec<BearingRange> = global.to_vec();
-        forbidden.extend(region.forbidden.iter().copied());
-        let bounds = part.bounding_rect();
-        for (j, other) in regions.iter().enumerate() {
-            if j == k || other.forbidden.is_empty() {
-                continue;
-            }
-            let near = match (bounds, other.polygon.bounding_rect()) {
-                (Some(a), Some(b)) => a.intersects(&b),
-                _ => false,
-            };
-            if near
-                && part
-                    .intersection(&MultiPolygon::new(vec![other.polygon.clone()]))
-                    .unsigned_area()
-                    >= TOUCH_AREA_M2
-            {
-                forbidden.extend(other.forbidden.iter().copied());
-            }
+        // Its own ranges, and those of every other region it reaches into.
+        let mut forbidden = constraints_in(&part, regions, global, TOUCH_AREA_M2);
+        if !region.forbidden.iter().all(|f| forbidden.contains(f)) {
+            forbidden.extend(region.forbidden.iter().copied());
         }
         parts.push(RegionArea {
             region: k,

@@ -182,12 +182,17 @@ pub fn lifts(swaths: &Swaths, obstacles: &[(usize, &geo::Polygon)]) -> Vec<Lift>
             }
         }
     }
-    out.sort_by(|x, y| {
+    sort_lifts(&mut out);
+    out
+}
+
+/// Puts lifts in the order [`Swaths::lifts`] keeps them: by swath, then along it.
+pub fn sort_lifts(lifts: &mut [Lift]) {
+    lifts.sort_by(|x, y| {
         (x.swath, x.along.0)
             .partial_cmp(&(y.swath, y.along.0))
             .unwrap_or(std::cmp::Ordering::Equal)
     });
-    out
 }
 
 /// Offsets (across the field) of the swath lines covering `[lo, hi]` with strips of `width`.

@@ -249,6 +249,12 @@ fn split_merge_works_the_arms_of_an_h_along_their_length() {
     directions.sort_by(f64::total_cmp);
     directions.dedup_by(|a, b| (*a - *b).abs() < 5.0);
     assert_eq!(directions.len(), 2, "{directions:?}");
+    // Along the arms' edges exactly (they run due north), not a degree off them.
+    for b in &plan.blocks.blocks {
+        let d = b.bearing.to_degrees().rem_euclid(180.0);
+        let off = d.min(180.0 - d).min((d - 90.0).abs());
+        assert!(off < 0.01, "a block at {d} degrees");
+    }
     assert!(directions.iter().any(|d| d.abs() < 5.0));
     assert!(directions.iter().any(|d| (d - 90.0).abs() < 5.0));
     assert_eq!(
@@ -313,5 +319,40 @@ fn split_merge_needs_a_searched_direction_and_the_headland_all_around() {
             .map(|c| c.method)
             .collect();
         assert_eq!(methods, [Decomposition::None, Decomposition::Boustrophedon]);
+    }
+}
+
+#[test]
+fn estimated_time_counts_each_move_between_blocks_once() {
+    use furrow::objective::{measure_all, turn_length};
+    use furrow::path::SegmentKind;
+    for field in valid_fields() {
+        if !["h-shape", "obstacles-1", "many-bays"].contains(&field.name.as_str()) {
+            continue;
+        }
+        for d in [Decomposition::None, Decomposition::SplitMerge] {
+            let plan = plan_with(&field, d);
+            let s = &plan.summary;
+            let m = plan.options.machine();
+            let stats = measure_all(&plan.swaths, &m);
+            // Turns within blocks by the turn model; every connection (between blocks, onto and
+            // between headland passes) its length and one turn, and nothing else.
+            let connections = plan.path.count_of(SegmentKind::Connection) as f64;
+            let expected = s.working_distance_m / m.working_speed
+                + (stats.turning_distance_m - stats.block_change_m
+                    + s.connection_distance_m
+                    + connections * turn_length(m.width, m.turn_radius))
+                    / m.turning_speed;
+            assert!(
+                (s.estimated_time_s - expected).abs() < 1e-6 * expected,
+                "{} ({}): {} s, expected {expected} s",
+                field.name,
+                d.as_str(),
+                s.estimated_time_s
+            );
+            assert!(
+                stats.block_change_m >= 0.0 && stats.block_change_m <= stats.turning_distance_m
+            );
+        }
     }
 }

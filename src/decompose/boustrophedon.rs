@@ -11,7 +11,7 @@
 
 use super::cells::{adjacency, merge, split, Cell, MergeRule, Trapezoid};
 use crate::geometry::SweepFrame;
-use crate::swath::{Swath, SwathArea, Swaths};
+use crate::swath::{sort_lifts, Swath, SwathArea, Swaths};
 use geo::MultiPolygon;
 
 /// Across coordinates (metres) within which a point counts as on a slab line.
@@ -157,11 +157,7 @@ pub fn cluster_into_cells(swaths: &mut Swaths, cells: &BoustrophedonCells) {
             l.swath = n;
         }
     }
-    swaths.lifts.sort_by(|x, y| {
-        (x.swath, x.along.0)
-            .partial_cmp(&(y.swath, y.along.0))
-            .unwrap_or(std::cmp::Ordering::Equal)
-    });
+    sort_lifts(&mut swaths.lifts);
     swaths.swaths = out;
     swaths.areas = areas;
 }

@@ -6,11 +6,12 @@
 //! direction); every cell is scored by the weighted criterion of 2.5 and the direction's cost is
 //! that of its best cell. The direction search (coarse-to-fine, 2.6, or brute force) finds the
 //! best direction, its best cell becomes a block, is removed from the area, and the search runs
-//! again on what is left until all of it is covered. Where an edge direction (or one already
-//! chosen) within two degrees of the best scores nearly as well, the block takes it: drivers
-//! work along an edge where they can. Prohibited regions (2.8) take part in the
-//! split: at a direction a region forbids it is an obstacle, so no block of that direction
-//! reaches into it.
+//! again on what is left, in the paper until all of it is covered; here for the first
+//! [`GREEDY_BLOCKS`] blocks, and what is left after them is cut into cells. Where an edge
+//! direction (or one already chosen) within two degrees of the best scores nearly as well, the
+//! block takes it: drivers work along an edge where they can. Prohibited regions (2.8) take
+//! part in the split: at a direction a region forbids it is an obstacle, so no block of that
+//! direction reaches into it.
 //!
 //! Refinements over the paper: a cell's swaths and turns are counted exactly (its swath lines
 //! clipped to it, turns by the turn model of [`crate::objective`]); curved edges do not shatter
