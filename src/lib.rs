@@ -59,6 +59,11 @@ pub mod tracks;
 #[cfg(target_arch = "wasm32")]
 pub mod bindings;
 
+/// The fixed seed of the property tests, shared with the integration tests.
+#[cfg(test)]
+#[path = "../tests/common/seeded.rs"]
+mod seeded;
+
 pub use error::{ErrorCode, PlanError, Warning, WarningCode};
 pub use options::PlanOptions;
 pub use plan::{plan, plan_geojson, Plan};

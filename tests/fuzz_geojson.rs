@@ -203,7 +203,7 @@ fn apply(text: &str, mutations: &[Mutation]) -> String {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 128, ..ProptestConfig::default() })]
+    #![proptest_config(common::seeded::config(128))]
 
     #[test]
     fn random_geojsonish_json(value in geojsonish(), options in options()) {

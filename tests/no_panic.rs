@@ -10,6 +10,8 @@ use furrow::objective::ObjectiveKind;
 use furrow::{plan_geojson, ErrorCode, PlanOptions};
 use proptest::prelude::*;
 
+mod common;
+
 fn ring_json(pts: &[(f64, f64)]) -> String {
     let mut s = String::from("[");
     for (x, y) in pts.iter().chain(pts.first()) {
@@ -118,7 +120,7 @@ fn check(text: &str, options: &PlanOptions) -> Result<(), TestCaseError> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 200, ..ProptestConfig::default() })]
+    #![proptest_config(common::seeded::config(200))]
 
     #[test]
     fn star_fields_with_obstacles(

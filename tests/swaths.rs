@@ -399,7 +399,7 @@ fn range() -> impl Strategy<Value = BearingRange> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 40, ..ProptestConfig::default() })]
+    #![proptest_config(common::seeded::config(40))]
 
     /// Random global forbidden ranges and a random prohibited region with random ranges, at a
     /// random direction rule, on a random corpus field: no swath in a forbidden direction, and

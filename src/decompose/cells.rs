@@ -583,6 +583,7 @@ mod tests {
     }
 
     proptest! {
+        #![proptest_config(crate::seeded::config(256))]
         /// On random star-shaped fields with a hole, at random directions, the trapezoids and the
         /// cells partition the field: their areas add up to its area, and cells do not overlap.
         #[test]

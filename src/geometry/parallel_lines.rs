@@ -171,6 +171,7 @@ mod tests {
     }
 
     proptest! {
+        #![proptest_config(crate::seeded::config(256))]
         /// The pieces of a line lie inside the polygon: their midpoints are inside, and their total
         /// length matches the length of the line's intersection computed by geo's BooleanOps.
         #[test]
