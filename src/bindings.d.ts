@@ -155,7 +155,28 @@ export interface PlanOptions {
    * direction is searched) split and merge are all planned, and the fastest kept.
    */
   decomposition?: Decomposition;
+  /**
+   * Order of the swaths in each block. Default `"auto"`: for each block, the pattern whose turns
+   * cost least (boustrophedon, snake skipping 1, snake skipping enough for plain U-turns, spiral).
+   */
+  pattern?: SwathPattern;
+  /** Swaths the snake pattern skips at each turn, 1 or more. Default 1. */
+  snakeSkip?: number;
+  /** Swaths in each group of the spiral pattern, 2 or more. Default 6. */
+  spiralSize?: number;
+  /**
+   * The custom pattern: the order in which each group of `m` neighbouring swaths is worked, a
+   * permutation of 0..m such as `[0, 2, 1, 3]`. Needed with `pattern: "custom"`.
+   */
+  customOrder?: number[];
+  /** Where the machine enters the field, in the input's coordinates: the route starts there. */
+  entrance?: Position | null;
+  /** Where the machine leaves the field, in the input's coordinates: the route ends there. */
+  exit?: Position | null;
 }
+
+/** How the swaths of a block are ordered. */
+export type SwathPattern = "boustrophedon" | "snake" | "spiral" | "custom" | "auto";
 
 /** What a plan feature is. */
 export type PlanFeatureKind =
@@ -265,9 +286,17 @@ export interface PlanSummary {
   working_distance_m: number;
   swath_distance_m: number;
   headland_distance_m: number;
+  /** Turns between swaths of a block, by the turn model (drawn as straight stand-ins). */
   turning_distance_m: number;
+  /** Connections between blocks, onto the headland passes, from the entrance and to the exit. */
   connection_distance_m: number;
+  /** Of which between blocks. */
+  block_connection_distance_m: number;
   total_distance_m: number;
+  /** Time working, seconds, at working speed. */
+  working_time_s: number;
+  /** Time turning and connecting (each connection with a turn onto it), seconds, at turning speed. */
+  non_working_time_s: number;
   field_area_m2: number;
   /** The bands of headland passes along the boundary and around obstacles that have them. */
   headland_area_m2: number;
@@ -290,6 +319,8 @@ export interface PlanSummary {
   objectives: ObjectiveValues;
   /** How the inner field was cut into blocks, and the decompositions compared. */
   decomposition: DecompositionReport;
+  /** How the swaths and blocks were ordered. */
+  route: RouteReport;
   /**
    * Estimated operation time, seconds: swaths and headland passes at working speed; turns within
    * blocks (by the turn model) and connections (each its length and a turn) at turning speed.
@@ -327,6 +358,18 @@ export interface DecompositionReport {
   reason: string;
   /** Every decomposition planned. */
   candidates: DecompositionCandidate[];
+}
+
+/** How the swaths and blocks were ordered. */
+export interface RouteReport {
+  /** The pattern the options asked for. */
+  pattern: SwathPattern;
+  /** The swath order of each block in working order: `boustrophedon`, `snake-1`, `spiral-6`, `custom`. */
+  block_patterns: string[];
+  /** How the block order was found: exactly (dynamic programming) or by ant colony and local search. */
+  sequence: "exact" | "ant-colony";
+  /** Connections that found no way along the headland and run straight. */
+  straight_connections: number;
 }
 
 /** The figures of one decomposition planned. */

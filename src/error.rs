@@ -244,7 +244,8 @@ pub enum WarningCode {
     IgnoredFeature,
     /// Swath pieces shorter than the minimum swath length were dropped.
     ShortSwathsDropped,
-    /// Blocks are joined by straight connections that may cross crop or obstacles.
+    /// Some connections found no way along the headland (no passes, or parts of the headland
+    /// that never meet) and run straight, likely across crop.
     StraightConnections,
     /// An obstacle is small across the driving direction (class A): swaths run past it with the
     /// implement lifted.

@@ -7,8 +7,11 @@ use crate::headland::Headlands;
 use crate::objective::{turn_length, Machine, ObjectiveValues};
 use crate::obstacles::{ObstacleClass, ObstacleClasses};
 use crate::path::{Path, SegmentKind};
+use crate::route::pattern::SwathPattern;
+use crate::route::sequence::SequenceMethod;
+use crate::route::{Route, RouteStep};
 use crate::swath::Swaths;
-use geo::Area;
+use geo::{Area, Length};
 use serde::Serialize;
 
 /// The summary of a plan: counts, distances and areas. Distances are metres, areas square metres.
@@ -28,12 +31,21 @@ pub struct Summary {
     pub swath_distance_m: f64,
     /// Of which along headland passes.
     pub headland_distance_m: f64,
-    /// Distance driven in turns between swaths.
+    /// Distance driven in turns between swaths of a block, by the turn model (the path draws
+    /// each turn as a straight stand-in until turns are planned at the turning radius).
     pub turning_distance_m: f64,
-    /// Distance driven in connections between blocks and onto the headland.
+    /// Distance driven in connections: between blocks, onto and between the headland passes,
+    /// from the entrance and to the exit.
     pub connection_distance_m: f64,
-    /// All the distance driven.
+    /// Of which between blocks (Zhou et al.'s block connection distance).
+    pub block_connection_distance_m: f64,
+    /// All the distance driven: working, turning and connections.
     pub total_distance_m: f64,
+    /// Time driven working, seconds, at working speed.
+    pub working_time_s: f64,
+    /// Time driven not working (turns and connections, each connection with a turn onto it),
+    /// seconds, at turning speed.
+    pub non_working_time_s: f64,
     /// Area of the field, inside the boundary and outside obstacles.
     pub field_area_m2: f64,
     /// Area of the headland: the bands of headland passes along the boundary and around the
@@ -62,6 +74,8 @@ pub struct Summary {
     pub objectives: ObjectiveValues,
     /// How the inner field was cut into blocks, and the candidates compared.
     pub decomposition: DecompositionReport,
+    /// How the swaths and blocks were ordered.
+    pub route: RouteReport,
     /// Estimated operation time, seconds: swaths and headland passes at working speed; turns
     /// within blocks (by the turn model) and connections (each its length and a turn onto it) at
     /// turning speed.
@@ -80,8 +94,32 @@ pub struct DirectionFigures {
     pub objectives: ObjectiveValues,
     /// The machine.
     pub machine: Machine,
-    /// Length of the turns within blocks by the turn model, metres.
-    pub block_turning_m: f64,
+}
+
+/// How the swaths and blocks were ordered.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct RouteReport {
+    /// The pattern the options asked for.
+    pub pattern: SwathPattern,
+    /// The swath order of each block in working order (`boustrophedon`, `snake-1`,
+    /// `spiral-6`, `custom`).
+    pub block_patterns: Vec<String>,
+    /// How the block order was found: `exact` (dynamic programming) or `ant-colony` (with local
+    /// search).
+    pub sequence: &'static str,
+    /// Connections that found no way along the headland and run straight.
+    pub straight_connections: usize,
+}
+
+impl Default for RouteReport {
+    fn default() -> Self {
+        RouteReport {
+            pattern: SwathPattern::Auto,
+            block_patterns: Vec::new(),
+            sequence: SequenceMethod::Exact.as_str(),
+            straight_connections: 0,
+        }
+    }
 }
 
 /// How the inner field was cut into blocks.
@@ -170,12 +208,15 @@ pub struct ClassCounts {
 }
 
 /// Measures a plan.
+// One argument per pipeline stage it measures.
+#[allow(clippy::too_many_arguments)]
 pub fn summarise(
     field: &Field,
     obstacles: &ObstacleClasses,
     headlands: &Headlands,
     swaths: &Swaths,
     blocks: &Blocks,
+    route: &Route,
     path: &Path,
     direction: &DirectionFigures,
 ) -> Summary {
@@ -183,12 +224,29 @@ pub fn summarise(
         direction,
         objectives,
         machine,
-        block_turning_m,
     } = *direction;
     let swath_distance_m = path.length_of(SegmentKind::Swath);
     let headland_distance_m = path.length_of(SegmentKind::HeadlandPass);
-    let turning_distance_m = path.length_of(SegmentKind::Turn);
+    let turning_distance_m = route.turning_m;
     let connection_distance_m = path.length_of(SegmentKind::Connection);
+    let block_connection_distance_m: f64 = route
+        .connections
+        .iter()
+        .enumerate()
+        .filter(|&(k, _)| {
+            k > 0
+                && matches!(route.steps.get(k), Some(RouteStep::Swath { .. }))
+                && matches!(route.steps.get(k - 1), Some(RouteStep::Swath { .. }))
+        })
+        .filter_map(|(_, c)| c.as_ref())
+        .map(|c| geo::Euclidean.length(&c.line))
+        .sum();
+    let connections = path.count_of(SegmentKind::Connection);
+    let working_time_s = (swath_distance_m + headland_distance_m) / machine.working_speed;
+    let non_working_time_s = (turning_distance_m
+        + connection_distance_m
+        + connections as f64 * turn_length(machine.width, machine.turn_radius))
+        / machine.turning_speed;
     let working_distance_m = swath_distance_m + headland_distance_m;
     let field_area_m2 = field.area_m2();
     let inner_field_area_m2 = headlands.inner.unsigned_area();
@@ -202,7 +260,10 @@ pub fn summarise(
         headland_distance_m,
         turning_distance_m,
         connection_distance_m,
+        block_connection_distance_m,
         total_distance_m: working_distance_m + turning_distance_m + connection_distance_m,
+        working_time_s,
+        non_working_time_s,
         field_area_m2,
         headland_area_m2: headlands.area_m2,
         inner_field_area_m2,
@@ -232,12 +293,17 @@ pub fn summarise(
         direction,
         objectives,
         decomposition: DecompositionReport::default(),
-        estimated_time_s: working_distance_m / machine.working_speed
-            + (block_turning_m
-                + connection_distance_m
-                + path.count_of(SegmentKind::Connection) as f64
-                    * turn_length(machine.width, machine.turn_radius))
-                / machine.turning_speed,
+        route: RouteReport {
+            pattern: SwathPattern::Auto,
+            block_patterns: route
+                .block_order
+                .iter()
+                .filter_map(|&b| route.block_patterns.get(b).cloned())
+                .collect(),
+            sequence: route.sequence.method.as_str(),
+            straight_connections: route.all_connections().filter(|c| c.straight).count(),
+        },
+        estimated_time_s: working_time_s + non_working_time_s,
         planning_ms: 0.0,
     }
 }

@@ -8,6 +8,7 @@ use crate::field::Coordinates;
 use crate::geometry::{forbids_every_direction, BearingRange};
 use crate::headland::{EdgePasses, HeadlandMode, HeadlandOrder};
 use crate::objective::{Machine, ObjectiveKind};
+use crate::route::pattern::SwathPattern;
 use serde::{Deserialize, Serialize};
 
 /// How the field is to be planned. Every option has a default; JavaScript passes them as an object
@@ -98,6 +99,23 @@ pub struct PlanOptions {
     /// direction, Zhou et al.'s cells), `split-merge` (Oksanen & Visala: a direction per block)
     /// or `auto` (the one of lowest estimated operation time).
     pub decomposition: Decomposition,
+    /// The order of the swaths inside each block: `boustrophedon`, `snake` (skipping
+    /// `snakeSkip` swaths at each turn), `spiral` (groups of `spiralSize`), `custom`
+    /// (`customOrder`), or `auto` (the pattern whose turns cost least, block by block).
+    pub pattern: SwathPattern,
+    /// Swaths the snake pattern skips at each turn.
+    pub snake_skip: u32,
+    /// Swaths in each group of the spiral pattern.
+    pub spiral_size: u32,
+    /// The custom pattern: a permutation of `0..m`, the order in which each group of `m`
+    /// neighbouring swaths is worked (e.g. `[0, 2, 1, 3]`).
+    pub custom_order: Vec<u32>,
+    /// Where the machine enters the field, in the input's coordinates: the route starts there
+    /// and reaches the first swath along the headland.
+    pub entrance: Option<[f64; 2]>,
+    /// Where the machine leaves the field, in the input's coordinates: the route ends there.
+    /// Without it, the route ends where the work ends.
+    pub exit: Option<[f64; 2]>,
 }
 
 impl Default for PlanOptions {
@@ -125,6 +143,12 @@ impl Default for PlanOptions {
             min_swath_length: None,
             coordinates: Coordinates::Wgs84,
             decomposition: Decomposition::Auto,
+            pattern: SwathPattern::Auto,
+            snake_skip: 1,
+            spiral_size: 6,
+            custom_order: Vec::new(),
+            entrance: None,
+            exit: None,
         }
     }
 }
@@ -242,7 +266,40 @@ pub const OPTION_DOCS: &[(&str, &str, &str)] = &[
         "none|boustrophedon|split-merge|auto",
         "how the field is cut into blocks: one direction, Zhou's boustrophedon cells, Oksanen's split and merge with a direction per block, or whichever is fastest (default auto)",
     ),
+    (
+        "pattern",
+        "boustrophedon|snake|spiral|custom|auto",
+        "order of the swaths in each block: one after another, skipping snakeSkip at each turn and coming back, spirals of spiralSize, customOrder, or the one whose turns cost least (default auto)",
+    ),
+    (
+        "snakeSkip",
+        "count",
+        "swaths the snake pattern skips at each turn (default 1)",
+    ),
+    (
+        "spiralSize",
+        "count",
+        "swaths in each group of the spiral pattern (default 6)",
+    ),
+    (
+        "customOrder",
+        "[i,...]",
+        "the custom pattern: the order of each group of neighbouring swaths, a permutation of 0..m such as [0,2,1,3] (default none)",
+    ),
+    (
+        "entrance",
+        "[x,y]",
+        "where the machine enters the field, in the input's coordinates: the route starts there (default: at the first swath)",
+    ),
+    (
+        "exit",
+        "[x,y]",
+        "where the machine leaves the field, in the input's coordinates: the route ends there (default: where the work ends)",
+    ),
 ];
+
+/// Most swaths the snake pattern may skip, and most in a spiral or custom group.
+pub const MAX_PATTERN_SWATHS: u32 = 1000;
 
 /// Largest working width accepted, metres.
 pub const MAX_WIDTH_M: f64 = 200.0;
@@ -382,6 +439,52 @@ impl PlanOptions {
         if let Some(m) = self.min_swath_length {
             if !(m.is_finite() && m >= 0.0) {
                 return out_of_range("minSwathLength", format!("{m}"), "0 or more metres");
+            }
+        }
+        if !(1..=MAX_PATTERN_SWATHS).contains(&self.snake_skip) {
+            return out_of_range(
+                "snakeSkip",
+                self.snake_skip.to_string(),
+                &format!("between 1 and {MAX_PATTERN_SWATHS}"),
+            );
+        }
+        if !(2..=MAX_PATTERN_SWATHS).contains(&self.spiral_size) {
+            return out_of_range(
+                "spiralSize",
+                self.spiral_size.to_string(),
+                &format!("between 2 and {MAX_PATTERN_SWATHS}"),
+            );
+        }
+        if self.custom_order.len() > MAX_PATTERN_SWATHS as usize {
+            return out_of_range(
+                "customOrder",
+                format!("{} positions long", self.custom_order.len()),
+                &format!("at most {MAX_PATTERN_SWATHS} positions"),
+            );
+        }
+        let mut sorted = self.custom_order.clone();
+        sorted.sort_unstable();
+        if sorted.iter().enumerate().any(|(i, &p)| p as usize != i) {
+            return Err(PlanError::new(
+                ErrorCode::InvalidOption,
+                format!(
+                    "option `customOrder` is {:?}; it must hold each of 0 to {} once",
+                    self.custom_order,
+                    self.custom_order.len().saturating_sub(1)
+                ),
+            ));
+        }
+        if self.pattern == SwathPattern::Custom && self.custom_order.is_empty() {
+            return Err(PlanError::new(
+                ErrorCode::InvalidOption,
+                "option `pattern` is `custom` but `customOrder` is empty; give the order of a group of swaths, such as [0, 2, 1, 3]",
+            ));
+        }
+        for (name, point) in [("entrance", self.entrance), ("exit", self.exit)] {
+            if let Some(p) = point {
+                if p.iter().any(|v| !v.is_finite()) {
+                    return out_of_range(name, format!("{p:?}"), "a point of finite coordinates");
+                }
             }
         }
         Ok(())

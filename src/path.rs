@@ -1,10 +1,11 @@
 //! The path: the route as one continuous line the machine drives, segment by segment.
 //!
 //! Worked segments (swaths, headland passes) are joined by connectors: a `turn` between two
-//! swaths of one block, a `connection` anywhere else (between blocks, onto the headland). In this
-//! first version every connector is the straight line between the two ends; drivable turns at the
-//! machine's turning radius replace the turns in a later version, and connections will run along
-//! the headland passes rather than across the crop.
+//! swaths of one block, a `connection` anywhere else (between blocks, onto the headland, from the
+//! entrance and to the exit). Connections follow the lines the route found along the headland.
+//! In this version a turn is the straight line between the two swath ends; drivable turns at the
+//! machine's turning radius replace them in a later version (the summary already measures turns
+//! by the turn model).
 
 use crate::geometry::point_segment_distance;
 use crate::headland::HeadlandPass;
@@ -70,16 +71,17 @@ pub struct Path {
 /// Connectors shorter than this (metres) are not drawn: the segments already meet.
 const MIN_CONNECTOR_M: f64 = 1e-6;
 
-/// Builds the path of a route: worked segments joined by straight connectors.
+/// Builds the path of a route: worked segments joined by the route's connections, and by straight
+/// turns between the swaths of a block.
 ///
 /// ```
-/// use furrow::{decompose::cluster_swaths, headland::HeadlandOrder, path::{build_path, SegmentKind}};
-/// use furrow::{route::boustrophedon, swath::generate};
+/// use furrow::{decompose::cluster_swaths, path::{build_path, SegmentKind}};
+/// use furrow::{route::{plan_route, RouteSettings}, swath::generate};
 /// use geo::{polygon, MultiPolygon};
 ///
 /// let field = polygon![(x: 0., y: 0.), (x: 30., y: 0.), (x: 30., y: 100.), (x: 0., y: 100.)];
 /// let swaths = generate(&MultiPolygon::new(vec![field]), 0.0, 6.0, 6.0)?;
-/// let route = boustrophedon(&swaths, &cluster_swaths(&swaths), &[], HeadlandOrder::Last, None);
+/// let route = plan_route(&swaths, &cluster_swaths(&swaths), &[], &RouteSettings::default());
 /// let path = build_path(&route, &swaths, &[]);
 /// let turns = path.segments.iter().filter(|s| s.kind == SegmentKind::Turn).count();
 /// assert_eq!(turns, 4); // five swaths, four turns between them
@@ -110,7 +112,14 @@ pub fn build_path(route: &Route, swaths: &Swaths, passes: &[HeadlandPass]) -> Pa
                     continue;
                 };
                 let line = if p.closed {
-                    let (_, entry) = nearest_on_ring(&p.line, last.map(|l| l.0));
+                    // Where the connection into it ends, else where the machine is.
+                    let at = route
+                        .connections
+                        .get(k)
+                        .and_then(|c| c.as_ref())
+                        .and_then(|c| c.line.0.last().copied())
+                        .or(last.map(|l| l.0));
+                    let (_, entry) = nearest_on_ring(&p.line, at);
                     ring_starting_at(&p.line, entry)
                 } else if reversed {
                     LineString::new(p.line.0.iter().rev().copied().collect())
@@ -123,7 +132,13 @@ pub fn build_path(route: &Route, swaths: &Swaths, passes: &[HeadlandPass]) -> Pa
         let (Some(&start), Some(&end)) = (line.0.first(), line.0.last()) else {
             continue;
         };
-        if let Some((from, from_block)) = last {
+        if let Some(Some(c)) = route.connections.get(k) {
+            segments.push(PathSegment {
+                kind: SegmentKind::Connection,
+                line: c.line.clone(),
+                step: None,
+            });
+        } else if let Some((from, from_block)) = last {
             if (from.x - start.x).hypot(from.y - start.y) > MIN_CONNECTOR_M {
                 let kind = if block.is_some() && block == from_block {
                     SegmentKind::Turn
@@ -143,6 +158,13 @@ pub fn build_path(route: &Route, swaths: &Swaths, passes: &[HeadlandPass]) -> Pa
             step: Some(k),
         });
         last = Some((end, block));
+    }
+    if let Some(c) = &route.finish {
+        segments.push(PathSegment {
+            kind: SegmentKind::Connection,
+            line: c.line.clone(),
+            step: None,
+        });
     }
     Path { segments }
 }
@@ -218,7 +240,7 @@ mod tests {
     fn segments_are_continuous() {
         use crate::decompose::cluster_swaths;
         use crate::headland::HeadlandPass;
-        use crate::route::boustrophedon;
+        use crate::route::{plan_route, RouteSettings};
         use crate::swath::generate;
         use geo::{polygon, MultiPolygon};
         let inner = polygon![(x: 6., y: 6.), (x: 94., y: 6.), (x: 94., y: 94.), (x: 6., y: 94.)];
@@ -229,12 +251,11 @@ mod tests {
             around: crate::headland::PassAround::Field,
         }];
         let swaths = generate(&MultiPolygon::new(vec![inner]), 0.4, 6.0, 6.0).unwrap();
-        let route = boustrophedon(
+        let route = plan_route(
             &swaths,
             &cluster_swaths(&swaths),
             &passes,
-            crate::headland::HeadlandOrder::Last,
-            None,
+            &RouteSettings::default(),
         );
         let path = build_path(&route, &swaths, &passes);
         for w in path.segments.windows(2) {

@@ -32,7 +32,7 @@ use crate::obstacles::{classify, ClassSettings, ObstacleClass, ObstacleClasses};
 use crate::options::PlanOptions;
 use crate::path::{build_path, Path};
 use crate::prohibited::{forbidding, split};
-use crate::route::{boustrophedon, Route};
+use crate::route::{pattern::candidates, plan_route, Route, RouteSettings};
 use crate::swath::{generate_with, lifts, LinePlacement, SwathArea, SwathSettings, Swaths};
 use geo::{Area, BooleanOps, BoundingRect};
 use web_time::Instant;
@@ -369,6 +369,7 @@ pub(crate) fn plan_stages(
         reason,
         candidates: figures,
     };
+    summary.route.pattern = options.pattern;
     warnings.extend(own_warnings);
     Ok(Plan {
         field,
@@ -592,6 +593,31 @@ fn no_swaths(bearing: f64, width: f64) -> Swaths {
     }
 }
 
+/// The route stage's settings for these options: the patterns to choose from, the headland
+/// order, the machine, and the entrance and exit in the field's local metres.
+pub fn route_settings(options: &PlanOptions, field: &Field) -> RouteSettings {
+    let custom: Vec<usize> = options.custom_order.iter().map(|&p| p as usize).collect();
+    RouteSettings {
+        orders: candidates(
+            options.pattern,
+            options.snake_skip as usize,
+            options.spiral_size as usize,
+            &custom,
+            options.width,
+            options.turn_radius,
+        ),
+        headland_order: options.headland_order,
+        width: options.width,
+        turn_radius: options.turn_radius,
+        entrance: options.entrance.map(|p| field.frame.to_local(p)),
+        exit: options.exit.map(|p| field.frame.to_local(p)),
+        seed: ROUTE_SEED,
+    }
+}
+
+/// Seed of the block sequence's ant colony: the same field and options give the same route.
+const ROUTE_SEED: u64 = 0x5eed_f077;
+
 /// Decomposes the inner field, lays the swaths, and routes, paths and measures the plan.
 fn work(
     field: &Field,
@@ -741,22 +767,27 @@ fn work(
         ));
     }
     let blocks = cluster_swaths(&swaths);
-    if blocks.blocks.len() > 1 {
-        warnings.push(Warning::new(
-            WarningCode::StraightConnections,
-            format!(
-                "the field falls into {} blocks; they are joined by straight connections, which may cross crop or obstacles",
-                blocks.blocks.len()
-            ),
-        ));
-    }
-    let route = boustrophedon(
+    let route = plan_route(
         &swaths,
         &blocks,
         &headlands.passes,
-        options.headland_order,
-        None,
+        &route_settings(options, field),
     );
+    let straight = route.all_connections().filter(|c| c.straight).count();
+    if straight > 0 {
+        warnings.push(Warning::new(
+            WarningCode::StraightConnections,
+            format!(
+                "{} found no way along the headland and {} straight across the field",
+                if straight == 1 {
+                    "1 connection".to_string()
+                } else {
+                    format!("{straight} connections")
+                },
+                if straight == 1 { "runs" } else { "run" }
+            ),
+        ));
+    }
     let path = build_path(&route, &swaths, &headlands.passes);
     let machine = options.machine();
     let stats = measure_all(&swaths, &machine);
@@ -774,12 +805,12 @@ fn work(
         &headlands,
         &swaths,
         &blocks,
+        &route,
         &path,
         &DirectionFigures {
             direction,
             objectives: ObjectiveValues::of(&stats, &machine),
             machine,
-            block_turning_m: stats.turning_distance_m - stats.block_change_m,
         },
     );
     Ok(Worked {

@@ -10,6 +10,8 @@ use common::corpus::{valid_fields, CorpusField};
 use furrow::decompose::Decomposition;
 use furrow::direction::SearchMethod;
 use furrow::headland::PassAround;
+use furrow::route::pattern::turn_between;
+use furrow::route::RouteStep;
 use furrow::{plan_geojson, Plan, PlanOptions};
 use geo::{Area, BooleanOps, Contains, MultiPolygon, Point};
 
@@ -197,21 +199,29 @@ fn decomposing_beats_the_best_single_direction_on_fields_with_arms_and_bays() {
         )
         .expect("plans");
         let decomposed = plan_with(&field, Decomposition::Auto);
-        assert_ne!(
-            decomposed.summary.decomposition.method,
-            Decomposition::None,
-            "{}: auto kept one direction",
-            field.name
-        );
         let (a, b) = (
             single.summary.estimated_time_s,
             decomposed.summary.estimated_time_s,
         );
-        assert!(
-            b < a,
-            "{}: decomposed {b:.0} s, one direction {a:.0} s",
-            field.name
-        );
+        if ["l-shape", "many-bays"].contains(&field.name.as_str()) {
+            // The L's two boustrophedon cells gained 0.3 % and the bays' split and merge 1.2 %
+            // while blocks were joined straight across the crop and worked boustrophedon.
+            // Joined along the headland, and each worked in its cheapest pattern (snakes that
+            // skip 2 or 3 swaths), one direction is as fast or faster: auto must then keep it.
+            assert!(b <= a * 1.001, "{}: {b:.0} s against {a:.0} s", field.name);
+        } else {
+            assert_ne!(
+                decomposed.summary.decomposition.method,
+                Decomposition::None,
+                "{}: auto kept one direction",
+                field.name
+            );
+            assert!(
+                b < a,
+                "{}: decomposed {b:.0} s, one direction {a:.0} s",
+                field.name
+            );
+        }
         // Not by leaving crop: the decomposed plan covers as much of its inner field, within
         // half a percent (its blocks' ends along borders at an angle leave a little more).
         let (ca, cb) = (
@@ -324,7 +334,7 @@ fn split_merge_needs_a_searched_direction_and_the_headland_all_around() {
 
 #[test]
 fn estimated_time_counts_each_move_between_blocks_once() {
-    use furrow::objective::{measure_all, turn_length};
+    use furrow::objective::turn_length;
     use furrow::path::SegmentKind;
     for field in valid_fields() {
         if !["h-shape", "obstacles-1", "many-bays"].contains(&field.name.as_str()) {
@@ -334,24 +344,53 @@ fn estimated_time_counts_each_move_between_blocks_once() {
             let plan = plan_with(&field, d);
             let s = &plan.summary;
             let m = plan.options.machine();
-            let stats = measure_all(&plan.swaths, &m);
-            // Turns within blocks by the turn model; every connection (between blocks, onto and
-            // between headland passes) its length and one turn, and nothing else.
+            // Turns within blocks by the turn model, in the order the route works them; every
+            // connection (between blocks, onto and between headland passes) its length and one
+            // turn, and nothing else.
             let connections = plan.path.count_of(SegmentKind::Connection) as f64;
             let expected = s.working_distance_m / m.working_speed
-                + (stats.turning_distance_m - stats.block_change_m
+                + (s.turning_distance_m
                     + s.connection_distance_m
                     + connections * turn_length(m.width, m.turn_radius))
                     / m.turning_speed;
+            // The turning is the turn model's over the turns the route drives.
+            let mut turning = 0.0;
+            for w in plan.route.steps.windows(2) {
+                if let (
+                    RouteStep::Swath {
+                        swath: a,
+                        reversed,
+                        block: ba,
+                    },
+                    RouteStep::Swath {
+                        swath: b,
+                        block: bb,
+                        ..
+                    },
+                ) = (w[0], w[1])
+                {
+                    if ba == bb {
+                        turning += turn_between(
+                            &plan.swaths.swaths[a],
+                            reversed,
+                            &plan.swaths.swaths[b],
+                            m.turn_radius,
+                        );
+                    }
+                }
+            }
+            assert!(
+                (turning - s.turning_distance_m).abs() < 1e-6 * turning.max(1.0),
+                "{}: turning {} m, the route's turns {turning} m",
+                field.name,
+                s.turning_distance_m
+            );
             assert!(
                 (s.estimated_time_s - expected).abs() < 1e-6 * expected,
                 "{} ({}): {} s, expected {expected} s",
                 field.name,
                 d.as_str(),
                 s.estimated_time_s
-            );
-            assert!(
-                stats.block_change_m >= 0.0 && stats.block_change_m <= stats.turning_distance_m
             );
         }
     }

@@ -1,0 +1,620 @@
+//! The headland graph: the lines a machine may drive along between blocks without crossing the
+//! crop of the inner field (Zhou et al. 2.4.1).
+//!
+//! Its lines are the centre lines of the headland passes: round the field, round obstacles, and
+//! along borders between blocks. A point (a swath end, the entrance) joins the graph by a short
+//! straight *spur* to the nearest point of a line; a machine changes from one line to another by
+//! a straight *hop* where they come within a working width of each other (neighbouring passes of
+//! one headland, a block's pass meeting the field's). A connection is the shortest way through
+//! that graph: spur, lines and hops, spur. Points the graph cannot reach are joined straight, at
+//! a cost the block sequence avoids (see [`CROSSING_PENALTY_M`]).
+//!
+//! Only the parts of the lines between the points asked about matter, so the graph searched is
+//! small: its nodes are the points' spur feet, the hop ends from them and the ends of open
+//! passes; its edges run along each line between consecutive nodes.
+//!
+//! ```
+//! use furrow::headland::{HeadlandPass, PassAround};
+//! use furrow::route::headland_graph::HeadlandGraph;
+//! use geo::{coord, LineString};
+//!
+//! // One pass round a 100 m square, 3 m in.
+//! let ring = LineString::from(vec![(3., 3.), (97., 3.), (97., 97.), (3., 97.), (3., 3.)]);
+//! let passes = [HeadlandPass { index: 1, line: ring, closed: true, around: PassAround::Field }];
+//! let graph = HeadlandGraph::new(&passes, 6.0);
+//! // Two swath ends 3 m inside the pass, on opposite sides of the field.
+//! let ends = [coord! { x: 10.0, y: 6.0 }, coord! { x: 10.0, y: 94.0 }];
+//! let c = graph.connect(&ends);
+//! let d = c.distance(0, 1);
+//! // Along the west side: 3 + 7 + 94 + 7 + 3 m.
+//! assert!((d - 114.0).abs() < 1e-9);
+//! assert!(c.line(0, 1).is_some());
+//! ```
+
+use crate::geometry::point_segment_distance;
+use crate::headland::HeadlandPass;
+use geo::{Coord, LineString};
+use rstar::{PointDistance, RTree, RTreeObject, AABB};
+use std::cmp::Ordering;
+use std::collections::BinaryHeap;
+
+/// Added to the length of a connection that has to cross the inner field (metres): more than any
+/// plan drives, so that the block sequence takes such a connection only when there is no other
+/// way.
+pub const CROSSING_PENALTY_M: f64 = 1e7;
+
+/// How far (in working widths) a point may be from the nearest line to join it by a spur: a
+/// swath end lies half a width inside the innermost pass.
+const SPUR_WIDTHS: f64 = 1.5;
+/// How far apart (in working widths) two lines may be for a hop between them: neighbouring
+/// passes are one width apart.
+const HOP_WIDTHS: f64 = 1.05;
+/// How far apart (in working widths) two neighbouring passes round the same thing may be for a
+/// hop: up to √2 widths at a right-angled corner rounded to the same radius.
+const CORNER_HOP_WIDTHS: f64 = 1.5;
+
+/// One segment of a line, for the nearest-point search.
+#[derive(Debug, Clone, Copy)]
+struct Segment {
+    line: usize,
+    index: usize,
+    a: Coord,
+    b: Coord,
+}
+
+impl RTreeObject for Segment {
+    type Envelope = AABB<[f64; 2]>;
+    fn envelope(&self) -> Self::Envelope {
+        AABB::from_corners([self.a.x, self.a.y], [self.b.x, self.b.y])
+    }
+}
+
+impl PointDistance for Segment {
+    fn distance_2(&self, p: &[f64; 2]) -> f64 {
+        let d = point_segment_distance(Coord { x: p[0], y: p[1] }, self.a, self.b);
+        d * d
+    }
+}
+
+impl Segment {
+    /// The point of the segment nearest to `p`, and its distance from the segment's start.
+    fn foot(&self, p: Coord) -> (Coord, f64) {
+        let d = self.b - self.a;
+        let len2 = d.x * d.x + d.y * d.y;
+        let t = if len2 > 0.0 {
+            (((p - self.a).x * d.x + (p - self.a).y * d.y) / len2).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        (self.a + d * t, t * len2.sqrt())
+    }
+}
+
+/// A line of the graph: a pass's centre line with the distance along it at each point.
+#[derive(Debug, Clone)]
+struct GraphLine {
+    points: Vec<Coord>,
+    /// Distance along the line at each point, metres.
+    at: Vec<f64>,
+    closed: bool,
+    /// The pass's index and what it runs round; `None` for a track.
+    pass: Option<(usize, crate::headland::PassAround)>,
+}
+
+impl GraphLine {
+    fn length(&self) -> f64 {
+        self.at.last().copied().unwrap_or(0.0)
+    }
+
+    /// The line from distance `from` to distance `to` along it, forwards (wrapping round a
+    /// closed line when `to < from`).
+    fn piece(&self, from: f64, to: f64) -> Vec<Coord> {
+        let mut out = vec![self.point_at(from)];
+        if to >= from {
+            out.extend(
+                self.at
+                    .iter()
+                    .zip(&self.points)
+                    .filter(|(&a, _)| a > from && a < to)
+                    .map(|(_, &p)| p),
+            );
+        } else {
+            out.extend(
+                self.at
+                    .iter()
+                    .zip(&self.points)
+                    .filter(|(&a, _)| a > from)
+                    .map(|(_, &p)| p),
+            );
+            out.extend(
+                self.at
+                    .iter()
+                    .zip(&self.points)
+                    .skip(1)
+                    .filter(|(&a, _)| a < to)
+                    .map(|(_, &p)| p),
+            );
+        }
+        out.push(self.point_at(to));
+        out
+    }
+
+    fn point_at(&self, s: f64) -> Coord {
+        let i = self
+            .at
+            .partition_point(|&a| a <= s)
+            .clamp(1, self.at.len().max(2) - 1);
+        match (self.points.get(i - 1), self.points.get(i)) {
+            (Some(&a), Some(&b)) => {
+                let span = self.at[i] - self.at[i - 1];
+                let t = if span > 0.0 {
+                    ((s - self.at[i - 1]) / span).clamp(0.0, 1.0)
+                } else {
+                    0.0
+                };
+                a + (b - a) * t
+            }
+            (Some(&a), None) => a,
+            _ => Coord { x: 0.0, y: 0.0 },
+        }
+    }
+}
+
+/// The lines a machine may drive along between blocks, indexed for nearest-point search.
+#[derive(Debug, Clone)]
+pub struct HeadlandGraph {
+    lines: Vec<GraphLine>,
+    tree: RTree<Segment>,
+    width: f64,
+}
+
+impl HeadlandGraph {
+    /// The graph of the passes' centre lines, for a machine of working width `width`.
+    pub fn new(passes: &[HeadlandPass], width: f64) -> Self {
+        Self::with_tracks(passes, &[], width)
+    }
+
+    /// The graph of the passes' centre lines and of `tracks`: open lines the machine may also
+    /// drive along, such as swaths already worked.
+    pub fn with_tracks(passes: &[HeadlandPass], tracks: &[LineString], width: f64) -> Self {
+        let mut lines = Vec::with_capacity(passes.len() + tracks.len());
+        let mut segments = Vec::new();
+        let all = passes
+            .iter()
+            .map(|p| (&p.line, p.closed, Some((p.index, p.around))))
+            .chain(tracks.iter().map(|t| (t, false, None)));
+        for (line_string, closed, pass) in all {
+            let points = &line_string.0;
+            if points.len() < 2 {
+                continue;
+            }
+            let line = lines.len();
+            let mut at = Vec::with_capacity(points.len());
+            let mut s = 0.0;
+            at.push(0.0);
+            for (index, w) in points.windows(2).enumerate() {
+                s += (w[1] - w[0]).x.hypot((w[1] - w[0]).y);
+                at.push(s);
+                segments.push(Segment {
+                    line,
+                    index,
+                    a: w[0],
+                    b: w[1],
+                });
+            }
+            lines.push(GraphLine {
+                points: points.clone(),
+                at,
+                closed,
+                pass,
+            });
+        }
+        HeadlandGraph {
+            lines,
+            tree: RTree::bulk_load(segments),
+            width,
+        }
+    }
+
+    /// Whether the graph has no line at all (a field without headland passes).
+    pub fn is_empty(&self) -> bool {
+        self.lines.is_empty()
+    }
+
+    /// The nearest point of any line to `p` within `radius`: (line, distance along it, point).
+    fn nearest(&self, p: Coord, radius: f64) -> Option<(usize, f64, Coord)> {
+        let seg = self.tree.nearest_neighbor(&[p.x, p.y])?;
+        let (foot, along) = seg.foot(p);
+        let d = (foot - p).x.hypot((foot - p).y);
+        (d <= radius).then(|| {
+            let at = self.lines[seg.line].at[seg.index] + along;
+            (seg.line, at, foot)
+        })
+    }
+
+    /// The graph between these points (swath ends, the entrance and the exit): each joins by a
+    /// spur of at most one and a half widths, or `unlimited` for the points in that set (the
+    /// user's entrance and exit, which may lie anywhere).
+    pub fn connect(&self, points: &[Coord]) -> Connections<'_> {
+        self.connect_with(points, &[])
+    }
+
+    /// [`connect`](Self::connect), with the points of index in `unlimited` joining the nearest
+    /// line however far it is.
+    pub fn connect_with(&self, points: &[Coord], unlimited: &[usize]) -> Connections<'_> {
+        let mut nodes: Vec<Node> = Vec::new();
+        let mut spurs: Vec<Option<(usize, f64)>> = Vec::with_capacity(points.len());
+        for (i, &p) in points.iter().enumerate() {
+            let radius = if unlimited.contains(&i) {
+                f64::INFINITY
+            } else {
+                SPUR_WIDTHS * self.width + 1e-6
+            };
+            match self.nearest(p, radius) {
+                Some((line, at, foot)) => {
+                    spurs.push(Some((nodes.len(), (foot - p).x.hypot((foot - p).y))));
+                    nodes.push(Node {
+                        line,
+                        at,
+                        point: foot,
+                    });
+                }
+                None => spurs.push(None),
+            }
+        }
+        // The ends of open lines join the lines beside them.
+        for (line, l) in self.lines.iter().enumerate() {
+            if !l.closed {
+                for (at, point) in [
+                    (0.0, l.points[0]),
+                    (l.length(), l.points[l.points.len() - 1]),
+                ] {
+                    nodes.push(Node { line, at, point });
+                }
+            }
+        }
+        // Hops from every node so far to the nearest point of each other line within reach.
+        let reach = HOP_WIDTHS * self.width + 1e-6;
+        let corner_reach = CORNER_HOP_WIDTHS * self.width + 1e-6;
+        let neighbours = |a: usize, b: usize| match (self.lines[a].pass, self.lines[b].pass) {
+            (Some((i, x)), Some((j, y))) => x == y && i.abs_diff(j) == 1,
+            _ => false,
+        };
+        let mut hops: Vec<(usize, usize, f64)> = Vec::new();
+        let base = nodes.len();
+        for n in 0..base {
+            let Node { line, point, .. } = nodes[n];
+            let mut best: Vec<(usize, f64, f64, Coord)> = Vec::new(); // (line, distance, at, foot)
+            for seg in self
+                .tree
+                .locate_within_distance([point.x, point.y], corner_reach * corner_reach)
+            {
+                if seg.line == line {
+                    continue;
+                }
+                let (foot, along) = seg.foot(point);
+                let d = (foot - point).x.hypot((foot - point).y);
+                if d > reach && !neighbours(line, seg.line) {
+                    continue;
+                }
+                let at = self.lines[seg.line].at[seg.index] + along;
+                match best.iter_mut().find(|b| b.0 == seg.line) {
+                    Some(b) if d < b.1 => *b = (seg.line, d, at, foot),
+                    Some(_) => {}
+                    None => best.push((seg.line, d, at, foot)),
+                }
+            }
+            for (other, d, at, foot) in best {
+                hops.push((n, nodes.len(), d));
+                nodes.push(Node {
+                    line: other,
+                    at,
+                    point: foot,
+                });
+            }
+        }
+        // Edges along each line between consecutive nodes, and the hops.
+        let mut edges: Vec<Vec<Edge>> = vec![Vec::new(); nodes.len()];
+        let mut on_line: Vec<Vec<usize>> = vec![Vec::new(); self.lines.len()];
+        for (n, node) in nodes.iter().enumerate() {
+            on_line[node.line].push(n);
+        }
+        for (line, ids) in on_line.iter_mut().enumerate() {
+            ids.sort_by(|&a, &b| nodes[a].at.total_cmp(&nodes[b].at));
+            let l = &self.lines[line];
+            for w in ids.windows(2) {
+                let len = nodes[w[1]].at - nodes[w[0]].at;
+                edges[w[0]].push(Edge {
+                    to: w[1],
+                    cost: len,
+                    way: EdgeWay::Forward,
+                });
+                edges[w[1]].push(Edge {
+                    to: w[0],
+                    cost: len,
+                    way: EdgeWay::Backward,
+                });
+            }
+            if l.closed && ids.len() > 1 {
+                if let (Some(&last), Some(&first)) = (ids.last(), ids.first()) {
+                    let len = l.length() - nodes[last].at + nodes[first].at;
+                    edges[last].push(Edge {
+                        to: first,
+                        cost: len,
+                        way: EdgeWay::Forward,
+                    });
+                    edges[first].push(Edge {
+                        to: last,
+                        cost: len,
+                        way: EdgeWay::Backward,
+                    });
+                }
+            }
+        }
+        for (a, b, d) in hops {
+            edges[a].push(Edge {
+                to: b,
+                cost: d,
+                way: EdgeWay::Hop,
+            });
+            edges[b].push(Edge {
+                to: a,
+                cost: d,
+                way: EdgeWay::Hop,
+            });
+        }
+        Connections {
+            graph: self,
+            points: points.to_vec(),
+            spurs,
+            nodes,
+            edges,
+        }
+    }
+}
+
+#[derive(Debug, Clone, Copy)]
+struct Node {
+    line: usize,
+    at: f64,
+    point: Coord,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum EdgeWay {
+    /// Along the line, the way its points run.
+    Forward,
+    /// Along the line, against its points.
+    Backward,
+    /// Straight across to another line.
+    Hop,
+}
+
+#[derive(Debug, Clone, Copy)]
+struct Edge {
+    to: usize,
+    cost: f64,
+    way: EdgeWay,
+}
+
+/// The graph between a set of points: their connection distances and lines.
+#[derive(Debug, Clone)]
+pub struct Connections<'a> {
+    graph: &'a HeadlandGraph,
+    points: Vec<Coord>,
+    /// Each point's spur: its node and length, or `None` when no line is near enough.
+    spurs: Vec<Option<(usize, f64)>>,
+    nodes: Vec<Node>,
+    edges: Vec<Vec<Edge>>,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Queued(f64, usize);
+impl Eq for Queued {}
+impl Ord for Queued {
+    fn cmp(&self, other: &Self) -> Ordering {
+        other.0.total_cmp(&self.0).then(other.1.cmp(&self.1))
+    }
+}
+impl PartialOrd for Queued {
+    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
+        Some(self.cmp(other))
+    }
+}
+
+impl Connections<'_> {
+    /// Shortest distances from node `source` to every node, and the edge each was reached by.
+    fn search(&self, source: usize) -> (Vec<f64>, Vec<Option<(usize, Edge)>>) {
+        let n = self.nodes.len();
+        let mut dist = vec![f64::INFINITY; n];
+        let mut came: Vec<Option<(usize, Edge)>> = vec![None; n];
+        let mut heap = BinaryHeap::new();
+        if source < n {
+            dist[source] = 0.0;
+            heap.push(Queued(0.0, source));
+        }
+        while let Some(Queued(d, u)) = heap.pop() {
+            if d > dist[u] {
+                continue;
+            }
+            for e in &self.edges[u] {
+                let nd = d + e.cost;
+                if nd < dist[e.to] {
+                    dist[e.to] = nd;
+                    came[e.to] = Some((u, *e));
+                    heap.push(Queued(nd, e.to));
+                }
+            }
+        }
+        (dist, came)
+    }
+
+    /// Whether point `i` joins the graph.
+    pub fn is_joined(&self, i: usize) -> bool {
+        matches!(self.spurs.get(i), Some(Some(_)))
+    }
+
+    /// The length of the shortest way from point `from` to each point in `to`, through the
+    /// graph; `None` where there is no way (a point not joined, or lines that never meet).
+    pub fn distances(&self, from: usize, to: &[usize]) -> Vec<Option<f64>> {
+        let Some(&Some((source, spur))) = self.spurs.get(from) else {
+            return vec![None; to.len()];
+        };
+        let (dist, _) = self.search(source);
+        to.iter()
+            .map(|&t| match self.spurs.get(t) {
+                Some(&Some((node, back))) if dist[node].is_finite() => {
+                    Some(spur + dist[node] + back)
+                }
+                _ => None,
+            })
+            .collect()
+    }
+
+    /// The shortest way between two points through the graph (as [`distances`](Self::distances)),
+    /// or straight across with [`CROSSING_PENALTY_M`] added where there is none.
+    pub fn distance(&self, from: usize, to: usize) -> f64 {
+        match self.distances(from, &[to]).first() {
+            Some(&Some(d)) => d,
+            _ => match (self.points.get(from), self.points.get(to)) {
+                (Some(&a), Some(&b)) => (b - a).x.hypot((b - a).y) + CROSSING_PENALTY_M,
+                _ => CROSSING_PENALTY_M,
+            },
+        }
+    }
+
+    /// The line of the shortest way from point `from` to point `to` through the graph, from the
+    /// one to the other; `None` where there is none.
+    pub fn line(&self, from: usize, to: usize) -> Option<LineString> {
+        let &Some((source, _)) = self.spurs.get(from)? else {
+            return None;
+        };
+        let &Some((target, _)) = self.spurs.get(to)? else {
+            return None;
+        };
+        let (dist, came) = self.search(source);
+        if !dist.get(target)?.is_finite() {
+            return None;
+        }
+        // Walk back from the target, collecting the pieces.
+        let mut pieces: Vec<Vec<Coord>> = Vec::new();
+        let mut v = target;
+        while v != source {
+            let (u, e) = came[v]?;
+            let (a, b) = (self.nodes[u], self.nodes[v]);
+            let l = &self.graph.lines[a.line];
+            pieces.push(match e.way {
+                EdgeWay::Hop => vec![a.point, b.point],
+                EdgeWay::Forward => l.piece(a.at, b.at),
+                EdgeWay::Backward => {
+                    let mut p = l.piece(b.at, a.at);
+                    p.reverse();
+                    p
+                }
+            });
+            v = u;
+        }
+        let mut out: Vec<Coord> = vec![self.points[from]];
+        for piece in pieces.into_iter().rev() {
+            out.extend(piece);
+        }
+        out.push(self.points[to]);
+        out.dedup_by(|a, b| (a.x - b.x).hypot(a.y - b.y) < 1e-9);
+        Some(LineString::new(out))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::headland::PassAround;
+    use geo::{coord, Euclidean, Length};
+
+    fn ring(d: f64, size: f64) -> LineString {
+        LineString::from(vec![
+            (d, d),
+            (size - d, d),
+            (size - d, size - d),
+            (d, size - d),
+            (d, d),
+        ])
+    }
+
+    fn pass(index: usize, line: LineString, closed: bool) -> HeadlandPass {
+        HeadlandPass {
+            index,
+            line,
+            closed,
+            around: PassAround::Field,
+        }
+    }
+
+    #[test]
+    fn the_line_runs_the_shorter_way_round_and_has_the_distance_s_length() {
+        let passes = [pass(1, ring(3.0, 100.0), true)];
+        let g = HeadlandGraph::new(&passes, 6.0);
+        // Near the south-east and the north-east corners: the way round the east side.
+        let ends = [coord! { x: 90.0, y: 6.0 }, coord! { x: 94.0, y: 80.0 }];
+        let c = g.connect(&ends);
+        let d = c.distance(0, 1);
+        assert!((d - (3.0 + 7.0 + 77.0 + 3.0)).abs() < 1e-9, "{d}");
+        let line = c.line(0, 1).unwrap();
+        assert!((Euclidean.length(&line) - d).abs() < 1e-9);
+        assert_eq!(line.0.first(), Some(&ends[0]));
+        assert_eq!(line.0.last(), Some(&ends[1]));
+        // And back, the same way.
+        assert!((c.distance(1, 0) - d).abs() < 1e-9);
+    }
+
+    #[test]
+    fn a_hop_joins_neighbouring_passes_and_open_passes() {
+        // Two open passes along the west and east ends, and a ring pass 6 m outside them.
+        let west = LineString::from(vec![(9.0, 9.0), (9.0, 91.0)]);
+        let east = LineString::from(vec![(91.0, 9.0), (91.0, 91.0)]);
+        let passes = [
+            pass(1, ring(3.0, 100.0), true),
+            pass(2, west, false),
+            pass(2, east, false),
+        ];
+        let g = HeadlandGraph::new(&passes, 6.0);
+        let ends = [coord! { x: 12.0, y: 50.0 }, coord! { x: 88.0, y: 50.0 }];
+        let c = g.connect(&ends);
+        let d = c.distance(0, 1);
+        // Out to the west pass, to its end, hop to the ring, along it, hop, and in.
+        assert!(d < CROSSING_PENALTY_M);
+        let line = c.line(0, 1).unwrap();
+        assert!((Euclidean.length(&line) - d).abs() < 1e-6);
+        assert!(d > 76.0 + 2.0 * 41.0);
+    }
+
+    #[test]
+    fn lines_that_never_meet_are_crossed_at_a_penalty() {
+        let passes = [
+            pass(1, ring(3.0, 100.0), true),
+            pass(1, ring(45.0, 100.0), true),
+        ];
+        let g = HeadlandGraph::new(&passes, 6.0);
+        let ends = [coord! { x: 50.0, y: 6.0 }, coord! { x: 50.0, y: 42.0 }];
+        let c = g.connect(&ends);
+        assert!(c.distance(0, 1) > CROSSING_PENALTY_M);
+        assert!(c.line(0, 1).is_none());
+        // A point far from every line is not joined.
+        let far = [coord! { x: 50.0, y: 25.0 }, coord! { x: 50.0, y: 6.0 }];
+        let c = g.connect(&far);
+        assert!(!c.is_joined(0));
+        assert!(c.distance(0, 1) > CROSSING_PENALTY_M);
+        // Unless it is the user's entrance.
+        let c = g.connect_with(&far, &[0]);
+        assert!(c.is_joined(0));
+    }
+
+    #[test]
+    fn an_empty_graph_joins_nothing() {
+        let g = HeadlandGraph::new(&[], 6.0);
+        assert!(g.is_empty());
+        let c = g.connect(&[coord! { x: 0.0, y: 0.0 }, coord! { x: 1.0, y: 0.0 }]);
+        assert!(c.line(0, 1).is_none());
+        assert!((c.distance(0, 1) - 1.0 - CROSSING_PENALTY_M).abs() < 1e-6);
+        assert!(c.line(5, 7).is_none());
+    }
+}

@@ -1,0 +1,819 @@
+//! The route: the order in which swaths, blocks and headland passes are worked, which way each
+//! is driven, and the connections between them along the headland.
+//!
+//! Three parts, each in its own module:
+//! - [`pattern`]: the order of the swaths inside a block (boustrophedon, snake, spiral, custom,
+//!   or `auto`, the one whose turns cost least), and the four ways to start it.
+//! - [`headland_graph`]: the lines along which the machine moves between blocks without crossing
+//!   the crop: the headland passes round the field and the obstacles, joined where they meet.
+//! - [`sequence`]: the order of the blocks and the way each is worked, as a travelling-salesman
+//!   problem over the blocks' entry and exit points (Zhou et al. 2.4): exact by dynamic
+//!   programming up to [`sequence::EXACT_MAX_BLOCKS`] blocks, by ant colony and local search
+//!   beyond.
+//!
+//! The headland passes come last, as in seeding (Zhou et al. 2.1), from the innermost out, so the
+//! machine finishes on the outermost pass at the field edge; or first, as in harvesting, from the
+//! outermost in, opening up the field edge before the swaths (the passes round obstacles, islands
+//! in the inner field, still come after them, reached along worked swaths rather than through
+//! standing crop). Passes with the same index are
+//! taken nearest-first; a closed pass is entered at its point nearest to the machine, an open one
+//! at its nearer end. The route starts at the entrance when one is given (else wherever the work
+//! starts best) and ends at the exit when one is given.
+
+pub mod headland_graph;
+pub mod pattern;
+pub mod sequence;
+
+use crate::decompose::Blocks;
+use crate::headland::{HeadlandOrder, HeadlandPass, PassAround};
+use crate::swath::Swaths;
+use geo::{Closest, ClosestPoint, Coord, LineString, Point};
+use headland_graph::{HeadlandGraph, CROSSING_PENALTY_M};
+use pattern::{ways, BlockWay, SwathOrder};
+use sequence::{SequenceMethod, SequenceProblem, Way};
+
+/// One step of a route.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum RouteStep {
+    /// Work a swath.
+    Swath {
+        /// Index into [`Swaths::swaths`].
+        swath: usize,
+        /// Driven from its end to its start (against the swath direction).
+        reversed: bool,
+        /// The block it belongs to.
+        block: usize,
+    },
+    /// Work a headland pass: a closed one from the point of it nearest to the machine, an open
+    /// one from its nearer end.
+    HeadlandPass {
+        /// Index into [`Headlands::passes`](crate::headland::Headlands::passes).
+        pass: usize,
+        /// An open pass driven from its last point to its first.
+        reversed: bool,
+    },
+}
+
+/// A move without working, between blocks or onto the headland passes: along the headland
+/// graph, or straight where it offers no way.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Connection {
+    /// Its line, in driving order.
+    pub line: LineString,
+    /// Whether the headland offered no way, so that it runs straight, likely across crop.
+    pub straight: bool,
+}
+
+/// How the order of the blocks was found.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SequenceReport {
+    /// Exact (dynamic programming) or the ant colony with local search.
+    pub method: SequenceMethod,
+    /// The cost minimised: turning inside the blocks by the turn model and connections between
+    /// them (and from the entrance), metres; each connection the headland offers no way for
+    /// counts [`CROSSING_PENALTY_M`] more.
+    pub cost_m: f64,
+}
+
+/// The order of work.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Route {
+    /// The steps in driving order.
+    pub steps: Vec<RouteStep>,
+    /// For each step, the connection that leads into it: `None` for a turn between swaths of a
+    /// block, and for the first step when the route has no entrance.
+    pub connections: Vec<Option<Connection>>,
+    /// The connection from the end of the work to the exit, if one was given.
+    pub finish: Option<Connection>,
+    /// The blocks in the order they are worked.
+    pub block_order: Vec<usize>,
+    /// The swath order each block is worked in (`boustrophedon`, `snake-1`, ...), by block.
+    pub block_patterns: Vec<String>,
+    /// Length of the turns between swaths of a block by the turn model, metres.
+    pub turning_m: f64,
+    /// How the block order was found.
+    pub sequence: SequenceReport,
+}
+
+impl Default for Route {
+    fn default() -> Self {
+        Route {
+            steps: Vec::new(),
+            connections: Vec::new(),
+            finish: None,
+            block_order: Vec::new(),
+            block_patterns: Vec::new(),
+            turning_m: 0.0,
+            sequence: SequenceReport {
+                method: SequenceMethod::Exact,
+                cost_m: 0.0,
+            },
+        }
+    }
+}
+
+impl Route {
+    /// The connections, in driving order (the finish last).
+    pub fn all_connections(&self) -> impl Iterator<Item = &Connection> {
+        self.connections.iter().flatten().chain(&self.finish)
+    }
+}
+
+/// The settings of the route stage.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RouteSettings {
+    /// The swath orders to choose from for each block (the one whose turns cost least is used).
+    pub orders: Vec<SwathOrder>,
+    /// Headland passes before or after the swaths.
+    pub headland_order: HeadlandOrder,
+    /// Working width, metres.
+    pub width: f64,
+    /// Turning radius, metres.
+    pub turn_radius: f64,
+    /// Where the route starts (local metres).
+    pub entrance: Option<Coord>,
+    /// Where the route ends (local metres).
+    pub exit: Option<Coord>,
+    /// Seed of the ant colony (for more than [`sequence::EXACT_MAX_BLOCKS`] blocks).
+    pub seed: u64,
+}
+
+impl Default for RouteSettings {
+    fn default() -> Self {
+        RouteSettings {
+            orders: vec![SwathOrder::Boustrophedon],
+            headland_order: HeadlandOrder::Last,
+            width: 6.0,
+            turn_radius: 8.0,
+            entrance: None,
+            exit: None,
+            seed: 1,
+        }
+    }
+}
+
+/// Routes a plan: the swath order of each block, the block sequence, the headland passes before
+/// or after, and the connections between them along the headland.
+///
+/// ```
+/// use furrow::{decompose::cluster_swaths, route::{plan_route, RouteSettings, RouteStep}, swath::generate};
+/// use geo::{polygon, MultiPolygon};
+///
+/// let field = polygon![(x: 0., y: 0.), (x: 30., y: 0.), (x: 30., y: 100.), (x: 0., y: 100.)];
+/// let swaths = generate(&MultiPolygon::new(vec![field]), 0.0, 6.0, 6.0)?;
+/// let blocks = cluster_swaths(&swaths);
+/// let route = plan_route(&swaths, &blocks, &[], &RouteSettings::default());
+/// let reversed: Vec<bool> = route.steps.iter().map(|s| match s {
+///     RouteStep::Swath { reversed, .. } => *reversed,
+///     _ => unreachable!(),
+/// }).collect();
+/// assert_eq!(reversed.len(), 5);
+/// // Each swath is driven the other way from the one before.
+/// assert!(reversed.windows(2).all(|w| w[0] != w[1]));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn plan_route(
+    swaths: &Swaths,
+    blocks: &Blocks,
+    passes: &[HeadlandPass],
+    settings: &RouteSettings,
+) -> Route {
+    let s = &swaths.swaths;
+    let graph = HeadlandGraph::new(passes, settings.width);
+    let mut route = Route::default();
+
+    // Headland first: the passes from the entrance, and the blocks from where they end.
+    let mut position = settings.entrance;
+    let mut pass_steps = Vec::new();
+    if settings.headland_order == HeadlandOrder::First {
+        position = append_headland_passes(&mut pass_steps, passes, position, true, not_island);
+    }
+
+    let (names, block_ways) = cheapest_ways(swaths, blocks, settings);
+    route.block_patterns = names;
+    let unlimited: Vec<usize> = if position.is_some() { vec![0] } else { vec![] };
+    // With passes (or an exit) after the blocks, the last block should end where the headland
+    // reaches.
+    let finish_on_headland =
+        !graph.is_empty() && (settings.exit.is_some() || passes.iter().any(|p| !not_island(p)));
+    let plain = build_problem(
+        &block_ways,
+        s,
+        position,
+        &graph,
+        &unlimited,
+        false,
+        finish_on_headland,
+    );
+    let mut solution = sequence::solve(&plain.problem, settings.seed);
+    let mut chosen = plain;
+    if solution.cost >= CROSSING_PENALTY_M {
+        // Some block leaves the machine where the headland offers no way on: let a block also
+        // end by driving back along its last swath, worked by then, to its other end.
+        let returning = build_problem(
+            &block_ways,
+            s,
+            position,
+            &graph,
+            &unlimited,
+            true,
+            finish_on_headland,
+        );
+        let second = sequence::solve(&returning.problem, settings.seed);
+        if second.cost < solution.cost {
+            solution = second;
+            chosen = returning;
+        }
+    }
+    route.sequence = SequenceReport {
+        method: solution.method,
+        cost_m: solution.cost,
+    };
+
+    // The steps: headland passes first, the blocks, headland passes last.
+    let mut steps = pass_steps;
+    let mut returns_after: Vec<usize> = Vec::new(); // steps after which the machine drives back
+    for &(b, wi) in &solution.order {
+        let Some(&(wi, returns)) = chosen.ways.get(b).and_then(|w| w.get(wi)) else {
+            continue;
+        };
+        let Some(w) = block_ways.get(b).and_then(|w| w.get(wi)) else {
+            continue;
+        };
+        route.block_order.push(b);
+        route.turning_m += w.turning_m;
+        let mut reversed = w.first_reversed;
+        for &id in &w.swaths {
+            steps.push(RouteStep::Swath {
+                swath: id,
+                reversed,
+                block: b,
+            });
+            position = Some(if reversed {
+                s[id].centre.start
+            } else {
+                s[id].centre.end
+            });
+            reversed = !reversed;
+        }
+        if returns {
+            returns_after.push(steps.len() - 1);
+        }
+    }
+    match settings.headland_order {
+        HeadlandOrder::Last => {
+            append_headland_passes(&mut steps, passes, position, false, |_| true);
+        }
+        HeadlandOrder::First => {
+            append_headland_passes(&mut steps, passes, position, false, |p| !not_island(p));
+        }
+    }
+
+    // The connections into each step that starts a block or a pass, and to the exit.
+    let mut moves: Vec<(usize, Coord, Coord)> = Vec::new(); // (step, from, to)
+    let mut backs: Vec<Option<Coord>> = Vec::new(); // where a drive back along a swath began
+    let mut at = settings.entrance;
+    let mut back: Option<Coord> = None;
+    let mut last_block: Option<usize> = None;
+    for (k, step) in steps.iter().enumerate() {
+        let (start, end, block) = step_ends(step, s, passes, at);
+        if let (Some(from), Some(start)) = (at, start) {
+            let same_block = block.is_some() && block == last_block;
+            if !same_block {
+                moves.push((k, from, start));
+                backs.push(back.take());
+            }
+        }
+        at = end.or(at);
+        last_block = block;
+        if returns_after.contains(&k) {
+            // Back along the swath just worked: the next connection starts at its other end.
+            back = at;
+            at = start;
+        }
+    }
+    let finish = match (at, settings.exit) {
+        (Some(from), Some(to)) => Some((steps.len(), from, to)),
+        _ => None,
+    };
+    let pairs: Vec<Coord> = moves
+        .iter()
+        .chain(&finish)
+        .flat_map(|&(_, a, b)| [a, b])
+        .collect();
+    let mut ends_free: Vec<usize> = Vec::new();
+    if let (Some(e), Some(&(k, from, _))) = (settings.entrance, moves.first()) {
+        if k == 0 && from == e {
+            ends_free.push(0);
+        }
+    }
+    if finish.is_some() {
+        ends_free.push(pairs.len() - 1);
+    }
+    let joined = graph.connect_with(&pairs, &ends_free);
+    // Once every swath is worked, the machine may also drive along their tracks: the way to an
+    // obstacle's passes, an island in the inner field.
+    let last_swath = steps
+        .iter()
+        .rposition(|st| matches!(st, RouteStep::Swath { .. }));
+    let after_swaths = |k: usize| last_swath.is_none_or(|l| k > l);
+    let needs_tracks = moves
+        .iter()
+        .chain(&finish)
+        .enumerate()
+        .any(|(i, &(k, _, _))| after_swaths(k) && joined.line(2 * i, 2 * i + 1).is_none());
+    let tracks_graph = (needs_tracks && last_swath.is_some()).then(|| {
+        let tracks: Vec<LineString> = s
+            .iter()
+            .map(|w| LineString::new(vec![w.centre.start, w.centre.end]))
+            .collect();
+        HeadlandGraph::with_tracks(passes, &tracks, settings.width)
+    });
+    let along_tracks = tracks_graph
+        .as_ref()
+        .map(|g| g.connect_with(&pairs, &ends_free));
+    route.connections = vec![None; steps.len()];
+    for (i, &(k, from, to)) in moves.iter().chain(&finish).enumerate() {
+        if (to - from).x.hypot((to - from).y) < 1e-6 {
+            continue;
+        }
+        let found = joined.line(2 * i, 2 * i + 1).or_else(|| {
+            along_tracks
+                .as_ref()
+                .filter(|_| after_swaths(k))
+                .and_then(|t| t.line(2 * i, 2 * i + 1))
+        });
+        let found = match (found, backs.get(i).copied().flatten()) {
+            (Some(line), Some(b)) => {
+                let mut pts = vec![b];
+                pts.extend(line.0);
+                Some(LineString::new(pts))
+            }
+            (found, _) => found,
+        };
+        let c = match found {
+            Some(line) => Connection {
+                line,
+                straight: false,
+            },
+            None => Connection {
+                line: LineString::new(vec![from, to]),
+                straight: true,
+            },
+        };
+        if k < steps.len() {
+            route.connections[k] = Some(c);
+        } else {
+            route.finish = Some(c);
+        }
+    }
+    route.steps = steps;
+    route
+}
+
+/// Each block's pattern (the cheapest of `settings.orders` by the mean turning of its four
+/// ways; the first on a tie) and its ways in that pattern.
+fn cheapest_ways(
+    swaths: &Swaths,
+    blocks: &Blocks,
+    settings: &RouteSettings,
+) -> (Vec<String>, Vec<Vec<BlockWay>>) {
+    let mut names = Vec::with_capacity(blocks.blocks.len());
+    let mut block_ways = Vec::with_capacity(blocks.blocks.len());
+    for block in &blocks.blocks {
+        let mut best: Option<(f64, String, Vec<BlockWay>)> = None;
+        for order in &settings.orders {
+            let w = ways(&block.swaths, &swaths.swaths, order, settings.turn_radius);
+            let mean = w.iter().map(|w| w.turning_m).sum::<f64>() / w.len().max(1) as f64;
+            if best.as_ref().is_none_or(|b| mean < b.0 - 1e-9) {
+                best = Some((mean, order.name(), w));
+            }
+        }
+        let (name, w) = best.map_or((String::new(), Vec::new()), |b| (b.1, b.2));
+        names.push(name);
+        block_ways.push(w);
+    }
+    (names, block_ways)
+}
+
+/// The block sequence problem [`plan_route`] solves first: each block's four ways in its
+/// pattern, connections along the headland from where the work starts (the entrance, or where
+/// the headland passes end when they come first). For checking the sequence against an
+/// exhaustive search.
+pub fn block_sequence_problem(
+    swaths: &Swaths,
+    blocks: &Blocks,
+    passes: &[HeadlandPass],
+    settings: &RouteSettings,
+) -> SequenceProblem {
+    let graph = HeadlandGraph::new(passes, settings.width);
+    let mut position = settings.entrance;
+    if settings.headland_order == HeadlandOrder::First {
+        position = append_headland_passes(&mut Vec::new(), passes, position, true, not_island);
+    }
+    let (_, block_ways) = cheapest_ways(swaths, blocks, settings);
+    let unlimited: Vec<usize> = if position.is_some() { vec![0] } else { vec![] };
+    let finish_on_headland =
+        !graph.is_empty() && (settings.exit.is_some() || passes.iter().any(|p| !not_island(p)));
+    build_problem(
+        &block_ways,
+        &swaths.swaths,
+        position,
+        &graph,
+        &unlimited,
+        false,
+        finish_on_headland,
+    )
+    .problem
+}
+
+/// The block sequence problem, and for each block and way of the problem the way of the block
+/// it stands for and whether it ends by driving back along its last swath.
+struct Problem {
+    problem: SequenceProblem,
+    ways: Vec<Vec<(usize, bool)>>,
+}
+
+/// Builds the block sequence problem: the points (where the work starts from, then each way's
+/// entry and exit), the ways, and the connection costs through the headland graph, straight at
+/// [`CROSSING_PENALTY_M`] where it offers no way. With `returning`, each way also comes in a
+/// variant that drives back along its last swath and leaves from its other end.
+fn build_problem(
+    block_ways: &[Vec<BlockWay>],
+    s: &[crate::swath::Swath],
+    position: Option<Coord>,
+    graph: &HeadlandGraph,
+    unlimited: &[usize],
+    returning: bool,
+    finish_on_headland: bool,
+) -> Problem {
+    let mut points: Vec<Coord> = vec![position.unwrap_or_default()];
+    let mut problem_ways: Vec<Vec<Way>> = Vec::with_capacity(block_ways.len());
+    let mut ways: Vec<Vec<(usize, bool)>> = Vec::with_capacity(block_ways.len());
+    for wlist in block_ways {
+        let mut list = Vec::with_capacity(wlist.len());
+        let mut which = Vec::with_capacity(wlist.len());
+        for (wi, w) in wlist.iter().enumerate() {
+            let (Some(entry), Some(exit), Some(last)) = (
+                way_entry(w, s),
+                way_exit(w, s),
+                w.swaths.last().and_then(|&i| s.get(i)),
+            ) else {
+                continue;
+            };
+            let entry = point_id(&mut points, entry);
+            let exit_id = point_id(&mut points, exit);
+            list.push(Way {
+                entry,
+                exit: exit_id,
+                cost: w.turning_m,
+            });
+            which.push((wi, false));
+            if returning {
+                let other = if exit == last.centre.end {
+                    last.centre.start
+                } else {
+                    last.centre.end
+                };
+                list.push(Way {
+                    entry,
+                    exit: point_id(&mut points, other),
+                    cost: w.turning_m + last.length(),
+                });
+                which.push((wi, true));
+            }
+        }
+        problem_ways.push(list);
+        ways.push(which);
+    }
+    let n = points.len();
+    let connections = graph.connect_with(&points, unlimited);
+    // Connection costs from every exit (and the start) to every entry.
+    let mut is_exit = vec![false; n];
+    let mut is_entry = vec![false; n];
+    for w in problem_ways.iter().flatten() {
+        is_exit[w.exit] = true;
+        is_entry[w.entry] = true;
+    }
+    let entries: Vec<usize> = (0..n).filter(|&i| is_entry[i]).collect();
+    let mut connection = vec![CROSSING_PENALTY_M * 10.0; n * n];
+    let mut from_start = vec![0.0; n];
+    // Where the blocks end the machine drives on to the headland passes or the exit: an exit
+    // point the headland does not reach costs a crossing.
+    let to_finish: Vec<f64> = (0..n)
+        .map(|i| {
+            if !is_exit[i] || !finish_on_headland || connections.is_joined(i) {
+                0.0
+            } else {
+                CROSSING_PENALTY_M
+            }
+        })
+        .collect();
+    for from in 0..n {
+        let start = from == 0;
+        if !(is_exit[from] || start && position.is_some()) {
+            continue;
+        }
+        let d = connections.distances(from, &entries);
+        for (&to, d) in entries.iter().zip(d) {
+            let cost = d.unwrap_or_else(|| {
+                let v = points[to] - points[from];
+                v.x.hypot(v.y) + CROSSING_PENALTY_M
+            });
+            if start {
+                from_start[to] = cost;
+            } else {
+                connection[from * n + to] = cost;
+            }
+        }
+    }
+    Problem {
+        problem: SequenceProblem {
+            ways: problem_ways,
+            points: n,
+            connection,
+            from_start,
+            to_finish,
+        },
+        ways,
+    }
+}
+
+/// Where a way starts: the start of its first swath as driven.
+fn way_entry(w: &BlockWay, s: &[crate::swath::Swath]) -> Option<Coord> {
+    let first = s.get(*w.swaths.first()?)?;
+    Some(if w.first_reversed {
+        first.centre.end
+    } else {
+        first.centre.start
+    })
+}
+
+/// Where a way ends: the end of its last swath as driven.
+fn way_exit(w: &BlockWay, s: &[crate::swath::Swath]) -> Option<Coord> {
+    let last = s.get(*w.swaths.last()?)?;
+    // Each swath is driven the other way from the one before.
+    let reversed = w.first_reversed ^ w.swaths.len().is_multiple_of(2);
+    Some(if reversed {
+        last.centre.start
+    } else {
+        last.centre.end
+    })
+}
+
+/// The index of a point in `points`, added if new.
+fn point_id(points: &mut Vec<Coord>, p: Coord) -> usize {
+    match points.iter().skip(1).position(|&q| q == p) {
+        Some(i) => i + 1,
+        None => {
+            points.push(p);
+            points.len() - 1
+        }
+    }
+}
+
+/// Where a step starts and ends (a closed pass starts and ends at its point nearest to where
+/// the machine is), and the block of a swath step.
+fn step_ends(
+    step: &RouteStep,
+    s: &[crate::swath::Swath],
+    passes: &[HeadlandPass],
+    at: Option<Coord>,
+) -> (Option<Coord>, Option<Coord>, Option<usize>) {
+    match *step {
+        RouteStep::Swath {
+            swath,
+            reversed,
+            block,
+        } => match s.get(swath) {
+            Some(w) if reversed => (Some(w.centre.end), Some(w.centre.start), Some(block)),
+            Some(w) => (Some(w.centre.start), Some(w.centre.end), Some(block)),
+            None => (None, None, Some(block)),
+        },
+        RouteStep::HeadlandPass { pass, reversed } => match passes.get(pass) {
+            Some(p) if p.closed => {
+                let (_, q) = nearest_on_ring(&p.line, at);
+                (q, q, None)
+            }
+            Some(p) => {
+                let (first, last) = (p.line.0.first().copied(), p.line.0.last().copied());
+                if reversed {
+                    (last, first, None)
+                } else {
+                    (first, last, None)
+                }
+            }
+            None => (None, None, None),
+        },
+    }
+}
+
+/// Whether a pass is reached from the field's headland: not one round an obstacle, an island in
+/// the inner field. With the headland first, those come after the swaths all the same: the
+/// machine reaches them along the swaths it has worked rather than through standing crop.
+fn not_island(p: &HeadlandPass) -> bool {
+    p.around != PassAround::Obstacle
+}
+
+/// Appends the headland passes `which` selects, outermost or innermost first, each part nearest-first, and
+/// returns where the machine ends up.
+fn append_headland_passes(
+    steps: &mut Vec<RouteStep>,
+    passes: &[HeadlandPass],
+    mut position: Option<Coord>,
+    outermost_first: bool,
+    which: impl Fn(&HeadlandPass) -> bool,
+) -> Option<Coord> {
+    let mut order: Vec<usize> = (0..passes.len()).filter(|&i| which(&passes[i])).collect();
+    if outermost_first {
+        order.sort_by_key(|&i| passes[i].index);
+    } else {
+        order.sort_by_key(|&i| std::cmp::Reverse(passes[i].index));
+    }
+    let mut k = 0;
+    while k < order.len() {
+        // Passes with the same index (parts split at necks): nearest first.
+        let index = passes[order[k]].index;
+        let mut end = k;
+        while end < order.len() && passes[order[end]].index == index {
+            end += 1;
+        }
+        let mut group: Vec<usize> = order[k..end].to_vec();
+        while !group.is_empty() {
+            // (distance, position in group, reversed, where the pass ends)
+            let mut best: Option<(f64, usize, bool, Option<Coord>)> = None;
+            for (g, &i) in group.iter().enumerate() {
+                let p = &passes[i];
+                let options = if p.closed {
+                    let (d, q) = nearest_on_ring(&p.line, position);
+                    vec![(d, false, q)]
+                } else {
+                    let (Some(&first), Some(&last)) = (p.line.0.first(), p.line.0.last()) else {
+                        continue;
+                    };
+                    let d = |q: Coord| position.map_or(0.0, |p| distance(p, q));
+                    vec![(d(first), false, Some(last)), (d(last), true, Some(first))]
+                };
+                for (d, reversed, end) in options {
+                    if best.is_none_or(|(bd, ..)| d < bd) {
+                        best = Some((d, g, reversed, end));
+                    }
+                }
+            }
+            let (g, reversed, end) = best.map_or((0, false, None), |(_, g, r, e)| (g, r, e));
+            let pass = group.remove(g);
+            steps.push(RouteStep::HeadlandPass { pass, reversed });
+            position = end.or(position);
+        }
+        k = end;
+    }
+    position
+}
+
+/// Distance to and the nearest point of a ring from a position (0 and `None` without one).
+pub fn nearest_on_ring(ring: &geo::LineString, position: Option<Coord>) -> (f64, Option<Coord>) {
+    let Some(p) = position else {
+        return (0.0, ring.0.first().copied());
+    };
+    match ring.closest_point(&Point(p)) {
+        Closest::Intersection(q) | Closest::SinglePoint(q) => (distance(p, q.0), Some(q.0)),
+        Closest::Indeterminate => (f64::INFINITY, None),
+    }
+}
+
+#[inline]
+fn distance(a: Coord, b: Coord) -> f64 {
+    (a.x - b.x).hypot(a.y - b.y)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::decompose::cluster_swaths;
+    use crate::headland::{HeadlandOrder, HeadlandPass};
+    use crate::swath::generate;
+    use geo::{polygon, LineString, MultiPolygon};
+
+    fn boustrophedon(
+        swaths: &Swaths,
+        blocks: &Blocks,
+        passes: &[HeadlandPass],
+        order: HeadlandOrder,
+        entrance: Option<Coord>,
+    ) -> Route {
+        let settings = RouteSettings {
+            headland_order: order,
+            entrance,
+            ..RouteSettings::default()
+        };
+        plan_route(swaths, blocks, passes, &settings)
+    }
+
+    #[test]
+    fn every_swath_once_and_blocks_all_visited() {
+        let field = polygon!(
+            exterior: [(x: 0., y: 0.), (x: 60., y: 0.), (x: 60., y: 100.), (x: 0., y: 100.)],
+            interiors: [[(x: 20., y: 40.), (x: 40., y: 40.), (x: 40., y: 60.), (x: 20., y: 60.)]],
+        );
+        let swaths = generate(&MultiPolygon::new(vec![field]), 0.0, 6.0, 6.0).unwrap();
+        let blocks = cluster_swaths(&swaths);
+        let route = boustrophedon(&swaths, &blocks, &[], HeadlandOrder::Last, None);
+        let mut seen: Vec<usize> = route
+            .steps
+            .iter()
+            .filter_map(|s| match s {
+                RouteStep::Swath { swath, .. } => Some(*swath),
+                _ => None,
+            })
+            .collect();
+        seen.sort_unstable();
+        assert_eq!(seen, (0..swaths.swaths.len()).collect::<Vec<_>>());
+        let mut order = route.block_order.clone();
+        order.sort_unstable();
+        assert_eq!(order, vec![0, 1, 2, 3]);
+    }
+
+    #[test]
+    fn open_passes_are_entered_at_the_nearer_end() {
+        let passes = vec![HeadlandPass {
+            index: 1,
+            line: LineString::from(vec![(0.0, 3.0), (100.0, 3.0)]),
+            closed: false,
+            around: crate::headland::PassAround::Field,
+        }];
+        let inner = polygon![(x: 0., y: 6.), (x: 100., y: 6.), (x: 100., y: 50.), (x: 0., y: 50.)];
+        let swaths = generate(&MultiPolygon::new(vec![inner]), 0.0, 6.0, 6.0).unwrap();
+        let blocks = cluster_swaths(&swaths);
+        // Starting near the eastern end, the pass is driven west.
+        let route = boustrophedon(
+            &swaths,
+            &blocks,
+            &passes,
+            HeadlandOrder::First,
+            Some(geo::coord! { x: 99.0, y: 0.0 }),
+        );
+        assert_eq!(
+            route.steps[0],
+            RouteStep::HeadlandPass {
+                pass: 0,
+                reversed: true
+            }
+        );
+    }
+
+    #[test]
+    fn headland_passes_come_last_innermost_first() {
+        let ring = |d: f64| {
+            LineString::from(vec![
+                (d, d),
+                (100.0 - d, d),
+                (100.0 - d, 100.0 - d),
+                (d, 100.0 - d),
+                (d, d),
+            ])
+        };
+        let pass = |index: usize, line: LineString| HeadlandPass {
+            index,
+            line,
+            closed: true,
+            around: crate::headland::PassAround::Field,
+        };
+        let passes = vec![pass(1, ring(3.0)), pass(2, ring(9.0))];
+        let inner =
+            polygon![(x: 12., y: 12.), (x: 88., y: 12.), (x: 88., y: 88.), (x: 12., y: 88.)];
+        let swaths = generate(&MultiPolygon::new(vec![inner]), 0.0, 6.0, 6.0).unwrap();
+        let blocks = cluster_swaths(&swaths);
+        let route = boustrophedon(&swaths, &blocks, &passes, HeadlandOrder::Last, None);
+        let tail: Vec<_> = route.steps[route.steps.len() - 2..].to_vec();
+        assert_eq!(
+            tail,
+            vec![
+                RouteStep::HeadlandPass {
+                    pass: 1,
+                    reversed: false
+                },
+                RouteStep::HeadlandPass {
+                    pass: 0,
+                    reversed: false
+                }
+            ]
+        );
+        // Harvesting: outermost first, then the swaths.
+        let route = boustrophedon(&swaths, &blocks, &passes, HeadlandOrder::First, None);
+        assert_eq!(
+            route.steps[..2].to_vec(),
+            vec![
+                RouteStep::HeadlandPass {
+                    pass: 0,
+                    reversed: false
+                },
+                RouteStep::HeadlandPass {
+                    pass: 1,
+                    reversed: false
+                }
+            ]
+        );
+        assert_eq!(route.steps.len(), 2 + swaths.swaths.len());
+        assert!(matches!(route.steps[2], RouteStep::Swath { .. }));
+    }
+}
