@@ -317,11 +317,15 @@ pub fn plan_route(
         .iter()
         .rposition(|st| matches!(st, RouteStep::Swath { .. }));
     let after_swaths = |k: usize| last_swath.is_none_or(|l| k > l);
+    // One search per connection: the lines through the headland graph.
+    let lines: Vec<Option<LineString>> = (0..moves.len() + finish.iter().count())
+        .map(|i| joined.line(2 * i, 2 * i + 1))
+        .collect();
     let needs_tracks = moves
         .iter()
         .chain(&finish)
-        .enumerate()
-        .any(|(i, &(k, _, _))| after_swaths(k) && joined.line(2 * i, 2 * i + 1).is_none());
+        .zip(&lines)
+        .any(|(&(k, _, _), line)| after_swaths(k) && line.is_none());
     let tracks_graph = (needs_tracks && last_swath.is_some()).then(|| {
         let tracks: Vec<LineString> = s
             .iter()
@@ -337,7 +341,7 @@ pub fn plan_route(
         if (to - from).x.hypot((to - from).y) < 1e-6 {
             continue;
         }
-        let found = joined.line(2 * i, 2 * i + 1).or_else(|| {
+        let found = lines[i].clone().or_else(|| {
             along_tracks
                 .as_ref()
                 .filter(|_| after_swaths(k))
