@@ -637,6 +637,7 @@ fn work(
     let tolerance = width * DECOMPOSITION_TOLERANCE;
     let mut swaths;
     if method == Decomposition::SplitMerge {
+        let orders = route_settings(options, field).orders;
         let settings = SplitMergeSettings {
             width,
             min_length: options.min_swath_length_m(),
@@ -648,6 +649,7 @@ fn work(
             criterion: Criterion::default(),
             min_end_angle: MIN_END_ANGLE_DEG.to_radians(),
             tolerance,
+            orders: &orders,
         };
         let sm = match seed {
             Seed::Greedy(substantial_share) => split_merge(

@@ -35,7 +35,7 @@ const MIN_SAVING: f64 = 0.01;
 ///     width: 6.0, min_length: 6.0,
 ///     machine: Machine { width: 6.0, turn_radius: 8.0, working_speed: 2.2, turning_speed: 1.4 },
 ///     method: SearchMethod::CoarseToFine, step_deg: 1.0, forbidden: &[], regions: &[],
-///     criterion: Criterion::default(), min_end_angle: 20f64.to_radians(), tolerance: 3.0,
+///     criterion: Criterion::default(), min_end_angle: 20f64.to_radians(), tolerance: 3.0, orders: &[],
 /// };
 /// let (blocks, evaluations) =
 ///     redirect_blocks(vec![BlockArea { area: MultiPolygon::new(vec![strip]), bearing: 0.0 }], &s)?;

@@ -34,6 +34,7 @@ use crate::field::ProhibitedRegion;
 use crate::geometry::{forbids_every_direction, BearingRange, SweepFrame};
 use crate::objective::{turn_length, Machine};
 use crate::prohibited::{constraints_in, forbidding, split};
+use crate::route::pattern::SwathOrder;
 use crate::swath::line_offsets;
 use geo::{Area, BooleanOps, BoundingRect, Intersects, MultiPolygon, Polygon};
 use std::f64::consts::PI;
@@ -96,6 +97,10 @@ pub struct SplitMergeSettings<'a> {
     /// Douglas-Peucker tolerance of the split (metres): vertices within it of a straight line
     /// draw no slab line.
     pub tolerance: f64,
+    /// The swath orders the route may work a block in ([`crate::route::pattern::candidates`]):
+    /// a block's turns are estimated in the cheapest of them, as the route will drive them.
+    /// Empty: boustrophedon.
+    pub orders: &'a [SwathOrder],
 }
 
 /// The blocks of a split-and-merge decomposition.
@@ -138,7 +143,7 @@ pub const GREEDY_BLOCKS: usize = 5;
 ///     width: 3.0, min_length: 3.0,
 ///     machine: Machine { width: 3.0, turn_radius: 6.0, working_speed: 2.2, turning_speed: 1.4 },
 ///     method: SearchMethod::CoarseToFine, step_deg: 1.0, forbidden: &[], regions: &[],
-///     criterion: Criterion::default(), min_end_angle: 20f64.to_radians(), tolerance: 1.5,
+///     criterion: Criterion::default(), min_end_angle: 20f64.to_radians(), tolerance: 1.5, orders: &[],
 /// };
 /// let d = split_merge(&MultiPolygon::new(vec![l.clone()]), &settings)?;
 /// // Each arm worked along its length.
@@ -355,7 +360,7 @@ pub fn improve(
 ///     width: 6.0, min_length: 6.0,
 ///     machine: Machine { width: 6.0, turn_radius: 8.0, working_speed: 2.2, turning_speed: 1.4 },
 ///     method: SearchMethod::CoarseToFine, step_deg: 1.0, forbidden: &[], regions: &[],
-///     criterion: Criterion::default(), min_end_angle: 20f64.to_radians(), tolerance: 3.0,
+///     criterion: Criterion::default(), min_end_angle: 20f64.to_radians(), tolerance: 3.0, orders: &[],
 /// };
 /// let (blocks, not_worked) = cells_at(&MultiPolygon::new(vec![field]), 0.0, MergeRule::Boustrophedon, &s);
 /// assert_eq!((blocks.len(), not_worked.len()), (4, 0));
@@ -606,6 +611,7 @@ mod tests {
             criterion: Criterion::default(),
             min_end_angle: 20f64.to_radians(),
             tolerance: 3.0,
+            orders: &[],
         }
     }
 

@@ -242,6 +242,49 @@ pub fn ways(
     out
 }
 
+/// The turn model's length of the turns of a block worked in the cheapest of `orders`, metres:
+/// the pattern the route picks for it (the one whose four ways turn least on average, see
+/// [`ways`]). `ids` are the block's swaths in line order; no orders give boustrophedon.
+///
+/// ```
+/// use furrow::route::pattern::{block_turning_m, SwathOrder};
+/// use furrow::swath::{generate_with, LinePlacement, SwathSettings};
+/// use geo::{polygon, MultiPolygon};
+///
+/// // A block 18 m wide, 3 m swaths, a machine turning at 6 m: a snake skipping three swaths
+/// // turns in plain U-turns, where boustrophedon needs a loop at every end.
+/// let block = polygon![(x: 0., y: 0.), (x: 18., y: 0.), (x: 18., y: 100.), (x: 0., y: 100.)];
+/// let settings = SwathSettings {
+///     bearing: 0.0, width: 3.0, min_length: 3.0, placement: LinePlacement::FromEdge,
+/// };
+/// let swaths = generate_with(&MultiPolygon::new(vec![block]), &settings)?.swaths;
+/// let ids: Vec<usize> = (0..swaths.len()).collect();
+/// let bous = block_turning_m(&ids, &swaths, &[SwathOrder::Boustrophedon], 6.0);
+/// let auto = [SwathOrder::Boustrophedon, SwathOrder::Snake { skip: 3 }];
+/// assert!(block_turning_m(&ids, &swaths, &auto, 6.0) < bous);
+/// # Ok::<(), furrow::error::PlanError>(())
+/// ```
+pub fn block_turning_m(
+    ids: &[usize],
+    swaths: &[Swath],
+    orders: &[SwathOrder],
+    turn_radius: f64,
+) -> f64 {
+    let boustrophedon = [SwathOrder::Boustrophedon];
+    let orders = if orders.is_empty() {
+        &boustrophedon[..]
+    } else {
+        orders
+    };
+    orders
+        .iter()
+        .map(|order| {
+            let w = ways(ids, swaths, order, turn_radius);
+            w.iter().map(|w| w.turning_m).sum::<f64>() / w.len().max(1) as f64
+        })
+        .fold(f64::INFINITY, f64::min)
+}
+
 /// The turn model's length of the turns of swaths worked in this sequence, metres.
 pub fn turning_of(sequence: &[usize], first_reversed: bool, swaths: &[Swath], radius: f64) -> f64 {
     let mut reversed = first_reversed;
