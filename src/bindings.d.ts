@@ -173,6 +173,12 @@ export interface PlanOptions {
   entrance?: Position | null;
   /** Where the machine leaves the field, in the input's coordinates: the route ends there. */
   exit?: Position | null;
+  /** Whether the machine may reverse in turns (three-point turns, Reeds-Shepp paths). Default false. */
+  reverse?: boolean;
+  /** Largest change of curvature per metre driven (1/m²): turns get clothoid transitions. Default none. */
+  curvatureRate?: number | null;
+  /** Distance between the points of the sampled path, metres. Default 0.5. */
+  sampleSpacing?: number;
 }
 
 /** How the swaths of a block are ordered. */
@@ -264,6 +270,26 @@ export interface PlanFeatureProperties {
    * the region (among the input's prohibited regions), whose own direction it follows.
    */
   region?: number;
+  /** Drivable features: distance driven from the start of the path to this feature's start, metres. */
+  distance_m?: number;
+  /** Drivable features: time from the start of the path to this feature's start, seconds. */
+  time_s?: number;
+  /** Drivable features: time to drive it, seconds (working speed on swaths and headland passes, else turning speed). */
+  duration_s?: number;
+  /** Drivable features: whether the implement works along it. */
+  working?: boolean;
+  /** A turn's form. */
+  form?: "u-turn" | "loop" | "three-point" | "reeds-shepp" | "cc-u-turn" | "cc-loop" | "none";
+  /** A turn's word, e.g. `"LSL"` or `"L+R-L+"`. */
+  word?: string;
+  /** `false` on a turn that leaves the field or crosses an obstacle (see the `turn_leaves_field` warning). */
+  inside?: boolean;
+  /** Drivable features: the heading at each point of the line, compass degrees. */
+  heading_deg?: number[];
+  /** Drivable features: the steering curvature at each point, 1/m, positive to the left. */
+  curvature?: number[];
+  /** On features where the machine reverses: whether it reverses at each point. */
+  reverse?: boolean[];
 }
 
 export type Position = [number, number];
@@ -286,16 +312,26 @@ export interface PlanSummary {
   working_distance_m: number;
   swath_distance_m: number;
   headland_distance_m: number;
-  /** Turns between swaths of a block, by the turn model (drawn as straight stand-ins). */
+  /** Turns between swaths of a block: the drivable turns of the path. */
   turning_distance_m: number;
+  /** The same turns by the turn model the route optimises. */
+  turn_model_distance_m: number;
+  /** How many turns of each form (`u-turn`, `loop`, `three-point`, `reeds-shepp`, `cc-u-turn`, `cc-loop`). */
+  turn_forms: Record<string, number>;
+  /** Turns that leave the field or cross an obstacle; each is warned of with its cause. */
+  turns_outside_field: number;
+  /** Changes of gear along the path. */
+  cusp_count: number;
   /** Connections between blocks, onto the headland passes, from the entrance and to the exit. */
   connection_distance_m: number;
   /** Of which between blocks. */
   block_connection_distance_m: number;
   total_distance_m: number;
+  /** The same route with turns on the spot (Fields2Cover's comparison). */
+  on_the_spot_distance_m: number;
   /** Time working, seconds, at working speed. */
   working_time_s: number;
-  /** Time turning and connecting (each connection with a turn onto it), seconds, at turning speed. */
+  /** Time turning and connecting (and each cusp's penalty), seconds, at turning speed. */
   non_working_time_s: number;
   field_area_m2: number;
   /** The bands of headland passes along the boundary and around obstacles that have them. */
@@ -322,8 +358,8 @@ export interface PlanSummary {
   /** How the swaths and blocks were ordered. */
   route: RouteReport;
   /**
-   * Estimated operation time, seconds: swaths and headland passes at working speed; turns within
-   * blocks (by the turn model) and connections (each its length and a turn) at turning speed.
+   * Estimated operation time, seconds: swaths and headland passes at working speed; the path's
+   * turns and connections (and a penalty per cusp) at turning speed.
    */
   estimated_time_s: number;
   /** Time the planner took, milliseconds. */
@@ -431,7 +467,8 @@ export type WarningCode =
   | "implement_lifted"
   | "region_own_direction"
   | "region_not_worked"
-  | "direction_not_searched";
+  | "direction_not_searched"
+  | "turn_leaves_field";
 
 export interface PlanWarning {
   /** What the warning is about; see the README's warning reference. */
@@ -447,6 +484,32 @@ export interface Plan {
   features: PlanFeature[];
   summary: PlanSummary;
   warnings: PlanWarning[];
+  /** The path sampled every `sampleSpacing` metres or less, as flat typed arrays (not in the GeoJSON text). */
+  samples: PathSamples;
+}
+
+/**
+ * The sampled path, one entry per point in every array. Positions in the input's coordinates.
+ * Kinds: 0 swath, 1 headland pass, 2 turn, 3 connection.
+ */
+export interface PathSamples {
+  x: Float64Array;
+  y: Float64Array;
+  /** Heading, compass degrees (where the machine faces, also when reversing). */
+  heading_deg: Float64Array;
+  /** Steering curvature, 1/m, positive to the left. */
+  curvature: Float64Array;
+  /** Distance from the start of the path, metres. */
+  distance_m: Float64Array;
+  /** Time from the start of the path, seconds. */
+  time_s: Float64Array;
+  kind: Uint8Array;
+  /** 1 where the machine reverses. */
+  reverse: Uint8Array;
+  /** 1 where the implement works. */
+  working: Uint8Array;
+  /** Index (`sequence`) of the drivable feature the point lies on. */
+  segment: Uint32Array;
 }
 
 /** The stable codes of errors thrown by `plan`. */

@@ -50,7 +50,44 @@ pub fn plan_js(field: JsValue, options: JsValue) -> Result<JsValue, JsValue> {
             format!("the plan could not be written: {e}"),
         ))
     })?;
-    js_sys::JSON::parse(&text)
+    let result = js_sys::JSON::parse(&text)?;
+    let samples = plan.samples();
+    let columns = js_sys::Object::new();
+    let put =
+        |key: &str, value: JsValue| js_sys::Reflect::set(&columns, &JsValue::from_str(key), &value);
+    put("x", js_sys::Float64Array::from(&samples.x[..]).into())?;
+    put("y", js_sys::Float64Array::from(&samples.y[..]).into())?;
+    put(
+        "heading_deg",
+        js_sys::Float64Array::from(&samples.heading_deg[..]).into(),
+    )?;
+    put(
+        "curvature",
+        js_sys::Float64Array::from(&samples.curvature[..]).into(),
+    )?;
+    put(
+        "distance_m",
+        js_sys::Float64Array::from(&samples.distance_m[..]).into(),
+    )?;
+    put(
+        "time_s",
+        js_sys::Float64Array::from(&samples.time_s[..]).into(),
+    )?;
+    put("kind", js_sys::Uint8Array::from(&samples.kind[..]).into())?;
+    put(
+        "reverse",
+        js_sys::Uint8Array::from(&samples.reverse[..]).into(),
+    )?;
+    put(
+        "working",
+        js_sys::Uint8Array::from(&samples.working[..]).into(),
+    )?;
+    put(
+        "segment",
+        js_sys::Uint32Array::from(&samples.segment[..]).into(),
+    )?;
+    js_sys::Reflect::set(&result, &JsValue::from_str("samples"), &columns)?;
+    Ok(result)
 }
 
 /// The default value of every option.

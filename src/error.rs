@@ -254,6 +254,9 @@ pub enum WarningCode {
     RegionOwnDirection,
     /// The forbidden ranges leave a prohibited region no direction: it gets no swaths.
     RegionNotWorked,
+    /// Some turns between swaths leave the field or cross an obstacle: no form the machine can
+    /// drive fits the headland there (the message gives the depth needed and the depth there).
+    TurnLeavesField,
     /// The field has too many swaths at this width to search every direction while the user
     /// waits: the swaths run along the longest edge.
     DirectionNotSearched,
@@ -279,6 +282,7 @@ impl WarningCode {
         WarningCode::RegionOwnDirection,
         WarningCode::RegionNotWorked,
         WarningCode::DirectionNotSearched,
+        WarningCode::TurnLeavesField,
     ];
 
     /// The code as it appears in JSON.
@@ -301,6 +305,7 @@ impl WarningCode {
             WarningCode::RegionOwnDirection => "region_own_direction",
             WarningCode::RegionNotWorked => "region_not_worked",
             WarningCode::DirectionNotSearched => "direction_not_searched",
+            WarningCode::TurnLeavesField => "turn_leaves_field",
         }
     }
 }

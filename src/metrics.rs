@@ -4,8 +4,9 @@ use crate::decompose::{Blocks, Decomposition};
 use crate::direction::{DirectionMode, SearchMethod};
 use crate::field::Field;
 use crate::headland::Headlands;
-use crate::objective::{turn_length, Machine, ObjectiveValues};
+use crate::objective::{Machine, ObjectiveValues};
 use crate::obstacles::{ObstacleClass, ObstacleClasses};
+use crate::path::turn::{cusps, CUSP_PENALTY_M};
 use crate::path::{Path, SegmentKind};
 use crate::route::pattern::SwathPattern;
 use crate::route::sequence::SequenceMethod;
@@ -13,6 +14,7 @@ use crate::route::{Route, RouteStep};
 use crate::swath::Swaths;
 use geo::{Area, Length};
 use serde::Serialize;
+use std::collections::BTreeMap;
 
 /// The summary of a plan: counts, distances and areas. Distances are metres, areas square metres.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -31,20 +33,35 @@ pub struct Summary {
     pub swath_distance_m: f64,
     /// Of which along headland passes.
     pub headland_distance_m: f64,
-    /// Distance driven in turns between swaths of a block, by the turn model (the path draws
-    /// each turn as a straight stand-in until turns are planned at the turning radius).
+    /// Distance driven in turns between swaths of a block: the drivable turns of the path.
     pub turning_distance_m: f64,
+    /// The same turns by the turn model the route and the decomposition optimise (a U-turn
+    /// `πr + (d − 2r)`, a loop under `2r`, plus the run between staggered ends).
+    pub turn_model_distance_m: f64,
+    /// The forms of the turns: how many of each (`u-turn`, `loop`, `three-point`,
+    /// `reeds-shepp`, `cc-u-turn`, `cc-loop`).
+    pub turn_forms: BTreeMap<&'static str, usize>,
+    /// Turns that leave the field or cross an obstacle (none fits the headland): each is in the
+    /// warnings with its cause.
+    pub turns_outside_field: usize,
+    /// Changes of gear along the path (three-point turns, Reeds-Shepp paths); each costs
+    /// [`CUSP_PENALTY_M`] of driving in the estimated time.
+    pub cusp_count: usize,
     /// Distance driven in connections: between blocks, onto and between the headland passes,
     /// from the entrance and to the exit.
     pub connection_distance_m: f64,
     /// Of which between blocks (Zhou et al.'s block connection distance).
     pub block_connection_distance_m: f64,
-    /// All the distance driven: working, turning and connections.
+    /// All the distance driven: working, turning and connections (the path's length).
     pub total_distance_m: f64,
+    /// The same route with turns on the spot (Fields2Cover's comparison): swaths, headland
+    /// passes and the connections' lines along the headland as routed, each turn the straight
+    /// line between the swath ends.
+    pub on_the_spot_distance_m: f64,
     /// Time driven working, seconds, at working speed.
     pub working_time_s: f64,
-    /// Time driven not working (turns and connections, each connection with a turn onto it),
-    /// seconds, at turning speed.
+    /// Time driven not working (turns and connections, and each cusp's penalty), seconds, at
+    /// turning speed.
     pub non_working_time_s: f64,
     /// Area of the field, inside the boundary and outside obstacles.
     pub field_area_m2: f64,
@@ -76,9 +93,8 @@ pub struct Summary {
     pub decomposition: DecompositionReport,
     /// How the swaths and blocks were ordered.
     pub route: RouteReport,
-    /// Estimated operation time, seconds: swaths and headland passes at working speed; turns
-    /// within blocks (by the turn model) and connections (each its length and a turn onto it) at
-    /// turning speed.
+    /// Estimated operation time, seconds: swaths and headland passes at working speed; the
+    /// path's turns and connections (and each cusp's penalty) at turning speed.
     pub estimated_time_s: f64,
     /// Time the planner took, milliseconds.
     pub planning_ms: f64,
@@ -227,8 +243,29 @@ pub fn summarise(
     } = *direction;
     let swath_distance_m = path.length_of(SegmentKind::Swath);
     let headland_distance_m = path.length_of(SegmentKind::HeadlandPass);
-    let turning_distance_m = route.turning_m;
+    let turning_distance_m = path.length_of(SegmentKind::Turn);
     let connection_distance_m = path.length_of(SegmentKind::Connection);
+    let mut turn_forms: BTreeMap<&'static str, usize> = BTreeMap::new();
+    let mut turns_outside_field = 0;
+    let mut on_the_spot_turns_m = 0.0;
+    for seg in &path.segments {
+        if let Some(t) = &seg.turn {
+            *turn_forms.entry(t.form.name()).or_default() += 1;
+            if !t.inside {
+                turns_outside_field += 1;
+            }
+        }
+        if seg.kind == SegmentKind::Turn {
+            if let (Some(a), Some(b)) = (seg.start(), seg.end()) {
+                on_the_spot_turns_m += a.distance(&b);
+            }
+        }
+    }
+    let cusp_count: usize = path.segments.iter().map(|s| cusps(&s.pieces)).sum();
+    let routed_connections_m: f64 = route
+        .all_connections()
+        .map(|c| geo::Euclidean.length(&c.line))
+        .sum();
     let block_connection_distance_m: f64 = route
         .connections
         .iter()
@@ -241,12 +278,10 @@ pub fn summarise(
         .filter_map(|(_, c)| c.as_ref())
         .map(|c| geo::Euclidean.length(&c.line))
         .sum();
-    let connections = path.count_of(SegmentKind::Connection);
     let working_time_s = (swath_distance_m + headland_distance_m) / machine.working_speed;
-    let non_working_time_s = (turning_distance_m
-        + connection_distance_m
-        + connections as f64 * turn_length(machine.width, machine.turn_radius))
-        / machine.turning_speed;
+    let non_working_time_s =
+        (turning_distance_m + connection_distance_m + cusp_count as f64 * CUSP_PENALTY_M)
+            / machine.turning_speed;
     let working_distance_m = swath_distance_m + headland_distance_m;
     let field_area_m2 = field.area_m2();
     let inner_field_area_m2 = headlands.inner.unsigned_area();
@@ -259,9 +294,14 @@ pub fn summarise(
         swath_distance_m,
         headland_distance_m,
         turning_distance_m,
+        turn_model_distance_m: route.turning_m,
+        turn_forms,
+        turns_outside_field,
+        cusp_count,
         connection_distance_m,
         block_connection_distance_m,
         total_distance_m: working_distance_m + turning_distance_m + connection_distance_m,
+        on_the_spot_distance_m: working_distance_m + on_the_spot_turns_m + routed_connections_m,
         working_time_s,
         non_working_time_s,
         field_area_m2,

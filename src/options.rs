@@ -116,6 +116,14 @@ pub struct PlanOptions {
     /// Where the machine leaves the field, in the input's coordinates: the route ends there.
     /// Without it, the route ends where the work ends.
     pub exit: Option<[f64; 2]>,
+    /// Whether the machine may reverse in turns (three-point turns, Reeds-Shepp paths).
+    pub reverse: bool,
+    /// The machine's largest change of curvature per metre driven (1/m²): how fast it can turn
+    /// its steering. Given, turns and corners are continuous-curvature (clothoids into and out
+    /// of every arc); `None`: arcs join lines directly (Dubins, Reeds-Shepp).
+    pub curvature_rate: Option<f64>,
+    /// Distance between the points of the sampled path, metres.
+    pub sample_spacing: f64,
 }
 
 impl Default for PlanOptions {
@@ -149,9 +157,22 @@ impl Default for PlanOptions {
             custom_order: Vec::new(),
             entrance: None,
             exit: None,
+            reverse: false,
+            curvature_rate: None,
+            sample_spacing: 0.5,
         }
     }
 }
+
+/// The largest `curvatureRate` accepted, 1/m²: beyond it the clothoids are shorter than a
+/// millimetre on any machine, and the turns those of plain arcs.
+pub const MAX_CURVATURE_RATE: f64 = 1000.0;
+
+/// Bounds of `sampleSpacing`, metres: a centimetre (a 200 ha plan is then some ten million
+/// points) to 100 m.
+pub const MIN_SAMPLE_SPACING_M: f64 = 0.01;
+/// See [`MIN_SAMPLE_SPACING_M`].
+pub const MAX_SAMPLE_SPACING_M: f64 = 100.0;
 
 /// Each option's key (as in JavaScript), its unit or type, and what it does: the help of the
 /// command-line planner. A test checks that it lists exactly the fields of [`PlanOptions`].
@@ -295,6 +316,21 @@ pub const OPTION_DOCS: &[(&str, &str, &str)] = &[
         "exit",
         "[x,y]",
         "where the machine leaves the field, in the input's coordinates: the route ends there (default: where the work ends)",
+    ),
+    (
+        "reverse",
+        "true|false",
+        "whether the machine may reverse in turns: three-point turns and Reeds-Shepp paths (default false)",
+    ),
+    (
+        "curvatureRate",
+        "1/m2",
+        "largest change of curvature per metre driven: turns and corners get clothoid transitions (continuous curvature) (default none: arcs join lines directly)",
+    ),
+    (
+        "sampleSpacing",
+        "metres",
+        "distance between the points of the sampled path (default 0.5)",
     ),
 ];
 
@@ -441,6 +477,24 @@ impl PlanOptions {
                 return out_of_range("minSwathLength", format!("{m}"), "0 or more metres");
             }
         }
+        if let Some(c) = self.curvature_rate {
+            if !(c.is_finite() && c > 0.0 && c <= MAX_CURVATURE_RATE) {
+                return out_of_range(
+                    "curvatureRate",
+                    format!("{c}"),
+                    &format!("more than 0 and at most {MAX_CURVATURE_RATE} per square metre"),
+                );
+            }
+        }
+        if !(self.sample_spacing.is_finite()
+            && (MIN_SAMPLE_SPACING_M..=MAX_SAMPLE_SPACING_M).contains(&self.sample_spacing))
+        {
+            return out_of_range(
+                "sampleSpacing",
+                format!("{}", self.sample_spacing),
+                &format!("between {MIN_SAMPLE_SPACING_M} and {MAX_SAMPLE_SPACING_M} metres"),
+            );
+        }
         if !(1..=MAX_PATTERN_SWATHS).contains(&self.snake_skip) {
             return out_of_range(
                 "snakeSkip",
@@ -532,6 +586,18 @@ impl PlanOptions {
         Machine {
             width: self.width,
             turn_radius: self.turn_radius,
+            working_speed: self.working_speed_kmh / 3.6,
+            turning_speed: self.turning_speed_kmh / 3.6,
+        }
+    }
+
+    /// The vehicle as the path sees it (speeds in metres per second).
+    pub fn vehicle(&self) -> crate::path::turn::Vehicle {
+        crate::path::turn::Vehicle {
+            width: self.width,
+            turn_radius: self.turn_radius,
+            reverse: self.reverse,
+            curvature_rate: self.curvature_rate,
             working_speed: self.working_speed_kmh / 3.6,
             turning_speed: self.turning_speed_kmh / 3.6,
         }

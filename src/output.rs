@@ -23,10 +23,13 @@ use crate::field::Frame;
 use crate::geometry::bearing_of;
 use crate::metrics::Summary;
 use crate::obstacles::ObstacleClass;
-use crate::path::SegmentKind;
+use crate::path::curve::Gear;
+use crate::path::sample::compass_deg;
+use crate::path::turn::chord_poses;
+use crate::path::{PathSegment, SegmentKind};
 use crate::plan::Plan;
 use crate::route::RouteStep;
-use geo::{LineString, Polygon};
+use geo::{Coord, LineString, Polygon};
 use serde::Serialize;
 
 /// The plan as a GeoJSON FeatureCollection (serialise it with serde).
@@ -117,6 +120,36 @@ pub struct Properties {
     /// For a swath or block in a prohibited region worked in its own direction: the region.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub region: Option<usize>,
+    /// Distance driven from the start of the path to the start of a drivable feature, metres.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub distance_m: Option<f64>,
+    /// Time from the start of the path to the start of a drivable feature, seconds.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub time_s: Option<f64>,
+    /// Time to drive a drivable feature, seconds.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub duration_s: Option<f64>,
+    /// Whether the implement works along a drivable feature.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub working: Option<bool>,
+    /// A turn's form: `u-turn`, `loop`, `three-point`, `reeds-shepp`, `cc-u-turn`, `cc-loop`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub form: Option<&'static str>,
+    /// A turn's word (`LSL`, `L+R-L+` …), where it has one.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub word: Option<String>,
+    /// `false` on a turn that leaves the field or crosses an obstacle (see the warnings).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub inside: Option<bool>,
+    /// The heading at each point of a drivable feature's line, compass degrees.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub heading_deg: Option<Vec<f64>>,
+    /// The steering curvature at each point, 1/m, positive to the left.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub curvature: Option<Vec<f64>>,
+    /// Whether the machine reverses at each point: only on features where it does.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub reverse: Option<Vec<bool>>,
 }
 
 /// A GeoJSON geometry of a plan feature.
@@ -189,13 +222,38 @@ impl Plan {
                 ));
             }
         }
+        let vehicle = self.options.vehicle();
+        let (mut distance, mut time) = (0.0, 0.0);
         for (sequence, seg) in self.path.segments.iter().enumerate() {
+            let length = seg.length();
+            let speed = if seg.is_working() {
+                vehicle.working_speed
+            } else {
+                vehicle.turning_speed
+            };
+            let duration = if speed > 0.0 { length / speed } else { 0.0 };
+            let (points, heading, curvature, reverse) = vertices(seg);
             let mut p = Properties {
                 kind: seg.kind.as_str(),
                 sequence: Some(sequence),
-                length_m: Some(round(seg.length(), 1e-3)),
+                length_m: Some(round(length, 1e-3)),
+                distance_m: Some(round(distance, 1e-3)),
+                time_s: Some(round(time, 1e-3)),
+                duration_s: Some(round(duration, 1e-3)),
+                working: Some(seg.is_working()),
+                heading_deg: Some(heading),
+                curvature: Some(curvature),
+                reverse: seg.reverses().then_some(reverse),
                 ..Default::default()
             };
+            distance += length;
+            time += duration;
+            if let Some(t) = &seg.turn {
+                p.form = Some(t.form.name());
+                let word = t.form.word();
+                p.word = (!word.is_empty()).then_some(word);
+                p.inside = Some(t.inside);
+            }
             match seg.step.and_then(|k| self.route.steps.get(k)) {
                 Some(&RouteStep::Swath {
                     swath,
@@ -229,7 +287,12 @@ impl Plan {
             if seg.kind == SegmentKind::Turn {
                 p.block = self.block_before(sequence);
             }
-            features.push(out.feature(p, Geometry::LineString(out.line(&seg.line))));
+            let line = if points.is_empty() {
+                out.line(&seg.line)
+            } else {
+                points.iter().map(|&c| out.frame.to_output(c)).collect()
+            };
+            features.push(out.feature(p, Geometry::LineString(line)));
         }
         PlanGeoJson {
             kind: "FeatureCollection",
@@ -283,6 +346,28 @@ impl Plan {
             }
         })
     }
+}
+
+/// The points of a drivable segment's line (its pieces at chords within 5 mm) with the heading
+/// (compass degrees), curvature and gear at each.
+fn vertices(seg: &PathSegment) -> (Vec<Coord>, Vec<f64>, Vec<f64>, Vec<bool>) {
+    let (mut pts, mut heading, mut curvature, mut reverse) =
+        (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+    for (i, piece) in seg.pieces.iter().enumerate() {
+        for (j, (pose, k)) in chord_poses(piece).enumerate() {
+            if i > 0 && j == 0 {
+                continue;
+            }
+            pts.push(Coord {
+                x: pose.x,
+                y: pose.y,
+            });
+            heading.push(round(compass_deg(pose.heading), 1e-4));
+            curvature.push(round(k, 1e-7));
+            reverse.push(piece.gear == Gear::Reverse);
+        }
+    }
+    (pts, heading, curvature, reverse)
 }
 
 /// Converts local metres to output coordinates.

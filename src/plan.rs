@@ -30,6 +30,8 @@ use crate::metrics::{
 use crate::objective::{measure_all, Machine, Objective, ObjectiveValues};
 use crate::obstacles::{classify, ClassSettings, ObstacleClass, ObstacleClasses};
 use crate::options::PlanOptions;
+use crate::path::sample::{sample, Samples};
+use crate::path::turn::Area as DrivingArea;
 use crate::path::{build_path, Path};
 use crate::prohibited::{forbidding, split};
 use crate::route::{pattern::candidates, plan_route, Route, RouteSettings};
@@ -91,6 +93,24 @@ pub struct Plan {
     pub summary: Summary,
     /// What was repaired in the input, and what the user should know about the plan.
     pub warnings: Vec<Warning>,
+}
+
+impl Plan {
+    /// The path sampled every `options.sample_spacing` metres or less ([`sample`]), positions
+    /// in the input's coordinates (longitude and latitude, or local metres).
+    pub fn samples(&self) -> Samples {
+        let mut s = sample(
+            &self.path,
+            self.options.sample_spacing,
+            &self.options.vehicle(),
+        );
+        for (x, y) in s.x.iter_mut().zip(s.y.iter_mut()) {
+            let [ox, oy] = self.field.frame.to_output(geo::Coord { x: *x, y: *y });
+            *x = ox;
+            *y = oy;
+        }
+        s
+    }
 }
 
 /// Plans a field.
@@ -615,6 +635,38 @@ pub fn route_settings(options: &PlanOptions, field: &Field) -> RouteSettings {
     }
 }
 
+/// The warning for the turns that leave the field, with their cause: how far beyond the swath
+/// ends the cheapest of them reaches against the depth of the headland.
+fn turns_leaving(path: &Path, options: &PlanOptions) -> Option<Warning> {
+    let outside: Vec<&crate::path::TurnReport> = path
+        .segments
+        .iter()
+        .filter_map(|s| s.turn.as_ref())
+        .filter(|t| !t.inside)
+        .collect();
+    if outside.is_empty() {
+        return None;
+    }
+    let reach = outside.iter().map(|t| t.reach_m).fold(0.0, f64::max);
+    let depth = options.headland_passes as f64 * options.width;
+    let hint = if options.reverse {
+        ""
+    } else {
+        "; allowing the machine to reverse (three-point turns) would need about one turning radius"
+    };
+    Some(Warning::new(
+        WarningCode::TurnLeavesField,
+        format!(
+            "{} leave the field or cross an obstacle: no turn the machine can drive fits there (they reach up to {reach:.1} m beyond the swath ends, against a headland {depth:.1} m deep at most){hint}",
+            if outside.len() == 1 {
+                "1 turn".to_string()
+            } else {
+                format!("{} turns", outside.len())
+            }
+        ),
+    ))
+}
+
 /// Seed of the block sequence's ant colony: the same field and options give the same route.
 const ROUTE_SEED: u64 = 0x5eed_f077;
 
@@ -790,7 +842,18 @@ fn work(
             ),
         ));
     }
-    let path = build_path(&route, &swaths, &headlands.passes);
+    let obstacle_rings: Vec<&geo::Polygon> = field.obstacles.iter().map(|o| &o.polygon).collect();
+    let area = DrivingArea::new(&field.boundary, &obstacle_rings);
+    let path = build_path(
+        &route,
+        &swaths,
+        &headlands.passes,
+        &options.vehicle(),
+        Some(&area),
+    );
+    if let Some(w) = turns_leaving(&path, options) {
+        warnings.push(w);
+    }
     let machine = options.machine();
     let stats = measure_all(&swaths, &machine);
     let direction = DirectionReport {

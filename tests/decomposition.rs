@@ -260,11 +260,13 @@ fn split_merge_works_the_arms_of_an_h_along_their_length() {
     directions.sort_by(f64::total_cmp);
     directions.dedup_by(|a, b| (*a - *b).abs() < 5.0);
     assert_eq!(directions.len(), 2, "{directions:?}");
-    // Along the arms' edges exactly (they run due north), not a degree off them.
+    // Along the arms' edges (they run due north) within the two degrees in which split and
+    // merge prefers an edge that scores nearly as well: the plans are compared by their
+    // drivable paths, and a degree off an edge can work the arms' ends with fewer turns.
     for b in &plan.blocks.blocks {
         let d = b.bearing.to_degrees().rem_euclid(180.0);
         let off = d.min(180.0 - d).min((d - 90.0).abs());
-        assert!(off < 0.01, "a block at {d} degrees");
+        assert!(off < 2.0, "a block at {d} degrees");
     }
     assert!(directions.iter().any(|d| d.abs() < 5.0));
     assert!(directions.iter().any(|d| (d - 90.0).abs() < 5.0));
@@ -335,7 +337,7 @@ fn split_merge_needs_a_searched_direction_and_the_headland_all_around() {
 
 #[test]
 fn estimated_time_counts_each_move_between_blocks_once() {
-    use furrow::objective::turn_length;
+    use furrow::path::turn::CUSP_PENALTY_M;
     use furrow::path::SegmentKind;
     for field in valid_fields() {
         if !["h-shape", "obstacles-1", "many-bays"].contains(&field.name.as_str()) {
@@ -345,16 +347,28 @@ fn estimated_time_counts_each_move_between_blocks_once() {
             let plan = plan_with(&field, d);
             let s = &plan.summary;
             let m = plan.options.machine();
-            // Turns within blocks by the turn model, in the order the route works them; every
-            // connection (between blocks, onto and between headland passes) its length and one
-            // turn, and nothing else.
-            let connections = plan.path.count_of(SegmentKind::Connection) as f64;
+            // Swaths and headland passes at working speed; the path's turns and connections
+            // (between blocks, onto and between headland passes), and each cusp's penalty, at
+            // turning speed, and nothing else.
+            let turns: f64 = plan
+                .path
+                .segments
+                .iter()
+                .filter(|s| s.kind == SegmentKind::Turn)
+                .map(|s| s.length())
+                .sum();
+            let connections: f64 = plan
+                .path
+                .segments
+                .iter()
+                .filter(|s| s.kind == SegmentKind::Connection)
+                .map(|s| s.length())
+                .sum();
+            assert!((turns - s.turning_distance_m).abs() < 1e-6 * turns.max(1.0));
+            assert!((connections - s.connection_distance_m).abs() < 1e-6 * connections.max(1.0));
             let expected = s.working_distance_m / m.working_speed
-                + (s.turning_distance_m
-                    + s.connection_distance_m
-                    + connections * turn_length(m.width, m.turn_radius))
-                    / m.turning_speed;
-            // The turning is the turn model's over the turns the route drives.
+                + (turns + connections + s.cusp_count as f64 * CUSP_PENALTY_M) / m.turning_speed;
+            // The turn model's figure is the model over the turns the route drives.
             let mut turning = 0.0;
             for w in plan.route.steps.windows(2) {
                 if let (
@@ -381,10 +395,10 @@ fn estimated_time_counts_each_move_between_blocks_once() {
                 }
             }
             assert!(
-                (turning - s.turning_distance_m).abs() < 1e-6 * turning.max(1.0),
-                "{}: turning {} m, the route's turns {turning} m",
+                (turning - s.turn_model_distance_m).abs() < 1e-6 * turning.max(1.0),
+                "{}: turn model {} m, the route's turns {turning} m",
                 field.name,
-                s.turning_distance_m
+                s.turn_model_distance_m
             );
             assert!(
                 (s.estimated_time_s - expected).abs() < 1e-6 * expected,

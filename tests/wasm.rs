@@ -75,6 +75,40 @@ fn js_api_returns_a_feature_collection() {
 }
 
 #[wasm_bindgen_test]
+fn js_api_gives_the_sampled_path_as_typed_arrays() {
+    let field = JSON::parse(FIELDS[16].1).expect("rectangle is JSON");
+    let options = JSON::parse(r#"{"width": 6, "headlandPasses": 2, "turnRadius": 8, "reverse": true, "sampleSpacing": 1}"#)
+        .expect("JSON");
+    let plan = plan_js(field, options).expect("plans");
+    let samples = get(&plan, "samples");
+    let x: js_sys::Float64Array = get(&samples, "x").dyn_into().expect("x is a Float64Array");
+    let n = x.length();
+    assert!(n > 1000, "{n} samples");
+    for key in ["y", "heading_deg", "curvature", "distance_m", "time_s"] {
+        let a: js_sys::Float64Array = get(&samples, key).dyn_into().expect(key);
+        assert_eq!(a.length(), n, "{key}");
+    }
+    for key in ["kind", "reverse", "working"] {
+        let a: js_sys::Uint8Array = get(&samples, key).dyn_into().expect(key);
+        assert_eq!(a.length(), n, "{key}");
+    }
+    let segment: js_sys::Uint32Array = get(&samples, "segment").dyn_into().expect("segment");
+    assert_eq!(segment.length(), n);
+    // Longitude and latitude, a metre apart at most, the path's length at the end.
+    let d: js_sys::Float64Array = get(&samples, "distance_m").dyn_into().expect("distance");
+    let total = get(&get(&plan, "summary"), "total_distance_m").as_f64().expect("total");
+    assert!((d.get_index(n - 1) - total).abs() < 0.01 * total);
+    assert!((24.0..24.1).contains(&x.get_index(0)));
+    // Turns carry their form; the GeoJSON text has no samples in it.
+    let features = js_sys::Array::from(&get(&plan, "features"));
+    let turn = features
+        .iter()
+        .find(|f| get(&get(f, "properties"), "kind") == "turn")
+        .expect("a turn");
+    assert!(get(&get(&turn, "properties"), "form").as_string().is_some());
+}
+
+#[wasm_bindgen_test]
 fn js_errors_carry_a_code_and_a_place() {
     let bowtie = r#"{"type":"Polygon","coordinates":[[[24.05,60.25],[24.0518,60.2509],[24.0518,60.25],[24.05,60.2509],[24.05,60.25]]]}"#;
     let err = plan_js(JsValue::from_str(bowtie), JsValue::UNDEFINED).expect_err("bowtie fails");

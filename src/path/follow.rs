@@ -1,0 +1,331 @@
+//! Driving along a line with corners (a headland pass, a connection along the headland): the
+//! corners rounded at the vehicle's limits.
+//!
+//! Each corner of the polyline is rounded by the vehicle's fillet (an arc of the turning
+//! radius, or a continuous-curvature turn), which starts a tangent length before the corner and
+//! ends as far after it. Where consecutive roundings do not fit on the edge between them (the
+//! polygonal arcs of a rounded headland corner: many short edges turning a little each), the
+//! edges between are dropped and the corner of the edges either side is rounded as one: the
+//! path stays within millimetres of an arc drawn at the turning radius, and cuts arcs drawn
+//! tighter than the machine turns. A corner too sharp to round within the edges either side (a
+//! cusp of a headland pass where a neck was cut, a spur onto a pass at right angles) gets a
+//! manoeuvre instead: the vehicle's cheapest turn from the end of one edge to the start of the
+//! next (a loop, or a three-point turn where it may reverse).
+//!
+//! ```
+//! use furrow::path::curve;
+//! use furrow::path::follow::follow;
+//! use furrow::path::turn::Vehicle;
+//! use geo::coord;
+//!
+//! let v = Vehicle { turn_radius: 5.0, ..Vehicle::default() };
+//! // A square corner with 50 m edges: a quarter circle of 5 m replaces the corner.
+//! let pts = [coord! { x: 0.0, y: 0.0 }, coord! { x: 50.0, y: 0.0 }, coord! { x: 50.0, y: 50.0 }];
+//! let path = follow(&pts, &v);
+//! let expected = 100.0 - 2.0 * 5.0 + 5.0 * std::f64::consts::FRAC_PI_2;
+//! assert!((curve::length(&path) - expected).abs() < 1e-9);
+//! let end = curve::end(&path).unwrap();
+//! assert!((end.x - 50.0).abs() < 1e-9 && (end.y - 50.0).abs() < 1e-9);
+//! ```
+
+use super::curve::{wrap, Gear, Pose, Segment};
+use super::turn::Vehicle;
+use geo::Coord;
+
+/// Most length of edges (in turning radii) a rounding may leave out between two others.
+const MAX_SKIPPED_RADII: f64 = 3.0;
+
+/// Points closer than this (metres) are one.
+const SAME_POINT_M: f64 = 1e-6;
+
+/// The path along `points` at the vehicle's limits (see the module documentation): it starts at
+/// the first point facing along the first edge and ends at the last point facing along the last
+/// edge. Empty for fewer than two distinct points.
+pub fn follow(points: &[Coord], v: &Vehicle) -> Vec<Segment> {
+    let mut pts: Vec<Coord> = Vec::with_capacity(points.len());
+    for &p in points {
+        if !(p.x.is_finite() && p.y.is_finite()) {
+            continue;
+        }
+        if pts
+            .last()
+            .is_none_or(|q: &Coord| (p.x - q.x).hypot(p.y - q.y) > SAME_POINT_M)
+        {
+            pts.push(p);
+        }
+    }
+    if pts.len() < 2 {
+        return Vec::new();
+    }
+    let edges: Vec<Edge> = pts.windows(2).map(|w| Edge::new(w[0], w[1])).collect();
+    let max_skip = MAX_SKIPPED_RADII * v.turn_radius;
+    let mut out: Vec<Segment> = Vec::with_capacity(edges.len());
+    // The edge being driven and how far along it the machine already is.
+    let mut a = 0;
+    let mut a_from = 0.0;
+    let mut position = Pose::new(pts[0].x, pts[0].y, edges[0].heading);
+    let mut j = 1;
+    while j < edges.len() {
+        let mut placed = false;
+        let mut skipped = 0.0;
+        // The turn from edge a to edge k, summed edge by edge (so that a run turning more
+        // than half round is not taken for one turning the other way).
+        let mut deflection = 0.0;
+        let mut k = j;
+        while k < edges.len() {
+            if k > j {
+                skipped += edges[k - 1].length;
+                if skipped > max_skip {
+                    break;
+                }
+            }
+            deflection += wrap(edges[k].heading - edges[k - 1].heading);
+            if deflection.abs() >= std::f64::consts::PI - 1e-6 {
+                break;
+            }
+            let Some((s, t)) = edges[a].meet(&edges[k]) else {
+                // Parallel: with nothing between them, one edge continues the other.
+                if deflection.abs() < 1e-9 && k == j {
+                    push_line(&mut out, &mut position, edges[a].length - a_from);
+                    a = k;
+                    a_from = edges[k].along(Coord {
+                        x: position.x,
+                        y: position.y,
+                    });
+                    j = k + 1;
+                    placed = true;
+                }
+                break;
+            };
+            let tangent = v.tangent_length(deflection);
+            if !tangent.is_finite() {
+                break;
+            }
+            let fits_before = s - tangent >= a_from - 1e-9;
+            // Room on edge k for this rounding and the next corner's.
+            let next = if k + 1 < edges.len() {
+                v.tangent_length(wrap(edges[k + 1].heading - edges[k].heading))
+                    .min(edges[k].length)
+            } else {
+                0.0
+            };
+            let fits_after = t + tangent <= edges[k].length - next + 1e-9;
+            if fits_before && fits_after {
+                push_line(&mut out, &mut position, s - tangent - a_from);
+                for f in v.fillet(position, deflection) {
+                    position = f.end();
+                    out.push(f);
+                }
+                a = k;
+                a_from = t + tangent;
+                j = k + 1;
+                placed = true;
+                break;
+            }
+            if !fits_before {
+                break;
+            }
+            k += 1;
+        }
+        if !placed {
+            let left: f64 = edges[j..].iter().map(|e| e.length).sum();
+            if left <= max_skip && edges[j..].iter().all(|e| e.length < v.turn_radius) {
+                // The line ends in short edges that cannot be rounded (the last chords of an
+                // arc tighter than the machine turns): it stops at the end of this edge, at
+                // most a few turning radii short, rather than looping to reach its very end.
+                break;
+            }
+            // A corner too sharp to round from here: drive to the end of this edge and turn
+            // onto the first edge ahead long enough to settle on (short edges in between, the
+            // chords of an arc tighter than the machine turns, are cut), a little way along it.
+            push_line(&mut out, &mut position, edges[a].length - a_from);
+            let mut m = j;
+            let mut skipped = 0.0;
+            while m + 1 < edges.len()
+                && edges[m].length < v.turn_radius
+                && skipped + edges[m].length <= max_skip
+            {
+                skipped += edges[m].length;
+                m += 1;
+            }
+            // Where along it: the join that costs least over the stretch it replaces.
+            let room = if m + 1 < edges.len() {
+                edges[m].length / 2.0
+            } else {
+                edges[m].length
+            };
+            let mut best: Option<(f64, f64, Vec<Segment>)> = None;
+            for k in [0.5, 1.0, 2.0, 3.0] {
+                let into = (k * v.turn_radius).min(room);
+                let at = edges[m].from + edges[m].dir * into;
+                let onto = Pose::new(at.x, at.y, edges[m].heading);
+                let turn = v.shortest(position, onto);
+                let cost = turn.length() - into;
+                if best.as_ref().is_none_or(|b| cost < b.0 - 1e-9) {
+                    best = Some((cost, into, turn.segments));
+                }
+            }
+            let (into, segments) = best.map_or((0.0, Vec::new()), |b| (b.1, b.2));
+            for seg in segments {
+                position = seg.end();
+                out.push(seg);
+            }
+            a = m;
+            a_from = into;
+            j = m + 1;
+        }
+    }
+    push_line(&mut out, &mut position, edges[a].length - a_from);
+    out
+}
+
+/// Drives `length` metres straight on from `position` (nothing if under a micrometre).
+fn push_line(out: &mut Vec<Segment>, position: &mut Pose, length: f64) {
+    if length > 1e-6 {
+        let line = Segment::line(*position, length, Gear::Forward);
+        *position = line.end();
+        out.push(line);
+    }
+}
+
+/// An edge of the polyline.
+#[derive(Debug, Clone, Copy)]
+struct Edge {
+    from: Coord,
+    dir: Coord,
+    length: f64,
+    heading: f64,
+}
+
+impl Edge {
+    fn new(from: Coord, to: Coord) -> Self {
+        let d = to - from;
+        let length = d.x.hypot(d.y);
+        Edge {
+            from,
+            dir: Coord {
+                x: d.x / length,
+                y: d.y / length,
+            },
+            length,
+            heading: d.y.atan2(d.x),
+        }
+    }
+
+    /// How far along the edge's line (from its start) `p` projects.
+    fn along(&self, p: Coord) -> f64 {
+        (p.x - self.from.x) * self.dir.x + (p.y - self.from.y) * self.dir.y
+    }
+
+    /// Where the lines of two edges meet: the distances along each from its start. `None` for
+    /// parallel lines.
+    fn meet(&self, o: &Edge) -> Option<(f64, f64)> {
+        let cross = self.dir.x * o.dir.y - self.dir.y * o.dir.x;
+        if cross.abs() < 1e-12 {
+            return None;
+        }
+        let w = o.from - self.from;
+        let s = (w.x * o.dir.y - w.y * o.dir.x) / cross;
+        let t = (w.x * self.dir.y - w.y * self.dir.x) / cross;
+        Some((s, t))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::path::curve;
+    use geo::coord;
+    use std::f64::consts::PI;
+
+    fn check_continuous(path: &[Segment], max_curvature: f64) {
+        for w in path.windows(2) {
+            let (e, s) = (w[0].end(), w[1].start);
+            assert!(e.distance(&s) < 1e-6, "gap {e:?} {s:?}");
+            assert!(e.heading_change(&s).abs() < 1e-6, "kink {e:?} {s:?}");
+        }
+        for s in path {
+            assert!(s.max_curvature() <= max_curvature + 1e-9);
+        }
+    }
+
+    #[test]
+    fn a_polygonal_arc_at_the_turning_radius_is_driven_as_one_arc() {
+        // A headland corner rounded at 8 m, drawn with chords 3 mm off the arc.
+        let r = 8.0;
+        let mut pts = vec![coord! { x: -50.0, y: 0.0 }];
+        let n = 60;
+        for i in 0..=n {
+            let a = -PI / 2.0 + (PI / 2.0) * i as f64 / n as f64;
+            pts.push(coord! { x: r * a.cos(), y: r + r * a.sin() });
+        }
+        pts.push(coord! { x: r, y: 60.0 });
+        let v = Vehicle {
+            turn_radius: r,
+            ..Vehicle::default()
+        };
+        let path = follow(&pts, &v);
+        check_continuous(&path, 1.0 / r);
+        let length = curve::length(&path);
+        let expect = 50.0 + r * PI / 2.0 + (60.0 - r);
+        assert!((length - expect).abs() < 0.01, "{length} {expect}");
+        // No manoeuvre: every piece forward, the turn one arc or a few.
+        assert!(path.iter().all(|s| s.gear == Gear::Forward));
+        let turned: f64 = path.iter().map(|s| s.curvature * s.length).sum();
+        assert!((turned - PI / 2.0).abs() < 1e-6);
+    }
+
+    #[test]
+    fn a_tight_corner_is_cut_and_a_cusp_gets_a_manoeuvre() {
+        let v = Vehicle {
+            turn_radius: 8.0,
+            ..Vehicle::default()
+        };
+        // An arc of 3 m radius (tighter than the machine): cut at 8 m.
+        let mut pts = vec![coord! { x: -40.0, y: 0.0 }];
+        for i in 0..=20 {
+            let a = -PI / 2.0 + (PI / 2.0) * i as f64 / 20.0;
+            pts.push(coord! { x: 3.0 * a.cos(), y: 3.0 + 3.0 * a.sin() });
+        }
+        pts.push(coord! { x: 3.0, y: 40.0 });
+        let path = follow(&pts, &v);
+        check_continuous(&path, 1.0 / 8.0);
+        let e = curve::end(&path).unwrap();
+        assert!((e.x - 3.0).abs() < 1e-6 && (e.y - 40.0).abs() < 1e-6);
+        // A cusp: out and straight back at 10 degrees: a manoeuvre, and still continuous.
+        let pts = [
+            coord! { x: 0.0, y: 0.0 },
+            coord! { x: 30.0, y: 0.0 },
+            coord! { x: 0.0, y: 30.0 * 10f64.to_radians().tan() },
+        ];
+        let path = follow(&pts, &v);
+        check_continuous(&path, 1.0 / 8.0);
+        let e = curve::end(&path).unwrap();
+        assert!(
+            e.distance(&Pose::new(pts[2].x, pts[2].y, 0.0)) < 1e-6,
+            "{e:?}"
+        );
+    }
+
+    #[test]
+    fn continuous_curvature_corners_keep_curvature_and_its_rate() {
+        let v = Vehicle {
+            turn_radius: 6.0,
+            curvature_rate: Some(0.1),
+            ..Vehicle::default()
+        };
+        let pts = [
+            coord! { x: 0.0, y: 0.0 },
+            coord! { x: 60.0, y: 0.0 },
+            coord! { x: 60.0, y: 60.0 },
+            coord! { x: 0.0, y: 70.0 },
+        ];
+        let path = follow(&pts, &v);
+        check_continuous(&path, 1.0 / 6.0);
+        for w in path.windows(2) {
+            let k0 = w[0].curvature_at(w[0].length);
+            assert!((k0 - w[1].curvature).abs() < 1e-9, "curvature jumps");
+        }
+        assert!(path.iter().all(|s| s.sharpness.abs() <= 0.1 + 1e-12));
+    }
+}

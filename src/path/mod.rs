@@ -1,0 +1,561 @@
+//! The path: the route as one continuous, drivable line, segment by segment.
+//!
+//! Worked segments (swaths, headland passes) are joined by connectors: a `turn` between two
+//! swaths of one block, a `connection` anywhere else (between blocks, onto the headland, from the
+//! entrance and to the exit). Every segment is a run of drivable pieces ([`curve::Segment`]:
+//! lines, arcs of at least the turning radius, clothoids), each starting where the one before
+//! ends, facing the same way:
+//! - a swath is its centre line;
+//! - a headland pass follows its centre line with its corners rounded at the vehicle's limits
+//!   ([`follow`]);
+//! - a turn is the cheapest form the vehicle can drive between the two swath ends that stays in
+//!   the field ([`turn`]: Dubins, Reeds-Shepp, three-point, continuous-curvature); turns that
+//!   cannot stay in are kept, marked and counted;
+//! - a connection follows the route's line along the headland, joined to the poses at either
+//!   end by the vehicle's cheapest turn.
+//!
+//! [`sample`] gives the path as points at a set spacing, for drawing and guidance.
+
+pub mod continuous;
+pub mod curve;
+pub mod dubins;
+pub mod follow;
+pub mod reeds_shepp;
+pub mod sample;
+pub mod turn;
+
+use crate::geometry::point_segment_distance;
+use crate::headland::HeadlandPass;
+use crate::route::{nearest_on_ring, Route, RouteStep};
+use crate::swath::Swaths;
+use curve::{Gear, Pose, Segment};
+use follow::follow;
+use geo::{Coord, Euclidean, Length, LineString};
+use turn::{Area, TurnForm, Vehicle};
+
+/// What a segment of the path is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum SegmentKind {
+    /// Working along a swath.
+    Swath,
+    /// Working along a headland pass.
+    HeadlandPass,
+    /// Turning from the end of one swath to the next swath of the same block.
+    Turn,
+    /// Driving without working between blocks, or between swaths and headland passes.
+    Connection,
+}
+
+impl SegmentKind {
+    /// The kind's name in the plan output (`properties.kind`).
+    pub fn as_str(self) -> &'static str {
+        match self {
+            SegmentKind::Swath => "swath",
+            SegmentKind::HeadlandPass => "headland",
+            SegmentKind::Turn => "turn",
+            SegmentKind::Connection => "connection",
+        }
+    }
+
+    /// A small number for the kind in flat sample arrays: 0 swath, 1 headland pass, 2 turn,
+    /// 3 connection.
+    pub fn code(self) -> u8 {
+        match self {
+            SegmentKind::Swath => 0,
+            SegmentKind::HeadlandPass => 1,
+            SegmentKind::Turn => 2,
+            SegmentKind::Connection => 3,
+        }
+    }
+}
+
+/// How a turn came out.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TurnReport {
+    /// Its form.
+    pub form: TurnForm,
+    /// Whether it stays inside the field and off its obstacles.
+    pub inside: bool,
+    /// How far it reaches beyond the end of the swath it leaves, metres (along that swath).
+    pub reach_m: f64,
+}
+
+/// One segment of the path.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PathSegment {
+    /// What the segment is.
+    pub kind: SegmentKind,
+    /// The pieces driven, in order.
+    pub pieces: Vec<Segment>,
+    /// Its shape as a line in driving order: the pieces' points, curves at chords within 5 mm.
+    pub line: LineString,
+    /// The route step it works (swaths and headland passes), as an index into `Route::steps`.
+    pub step: Option<usize>,
+    /// For a turn: its form and whether it stays in the field.
+    pub turn: Option<TurnReport>,
+}
+
+impl PathSegment {
+    /// A segment of these pieces (its line drawn from them).
+    pub fn new(kind: SegmentKind, pieces: Vec<Segment>, step: Option<usize>) -> Self {
+        let mut pts: Vec<Coord> = Vec::new();
+        for p in &pieces {
+            for c in turn::chord_points(p) {
+                if pts
+                    .last()
+                    .is_none_or(|q: &Coord| (q.x - c.x).hypot(q.y - c.y) > 1e-9)
+                {
+                    pts.push(c);
+                }
+            }
+        }
+        if pts.len() == 1 {
+            pts.push(pts[0]);
+        }
+        PathSegment {
+            kind,
+            pieces,
+            line: LineString::new(pts),
+            step,
+            turn: None,
+        }
+    }
+
+    /// Length driven along the segment, metres.
+    pub fn length(&self) -> f64 {
+        if self.pieces.is_empty() {
+            Euclidean.length(&self.line)
+        } else {
+            curve::length(&self.pieces)
+        }
+    }
+
+    /// Whether the implement works along this segment.
+    pub fn is_working(&self) -> bool {
+        matches!(self.kind, SegmentKind::Swath | SegmentKind::HeadlandPass)
+    }
+
+    /// Whether any piece of it is driven in reverse.
+    pub fn reverses(&self) -> bool {
+        self.pieces.iter().any(|p| p.gear == Gear::Reverse)
+    }
+
+    /// Where it starts.
+    pub fn start(&self) -> Option<Pose> {
+        self.pieces.first().map(|p| p.start)
+    }
+
+    /// Where it ends.
+    pub fn end(&self) -> Option<Pose> {
+        curve::end(&self.pieces)
+    }
+}
+
+/// The path of a plan: its segments in driving order, each starting where the last one ended.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Path {
+    /// The segments in driving order.
+    pub segments: Vec<PathSegment>,
+}
+
+/// Connectors shorter than this (metres) are not drawn: the segments already meet.
+const MIN_CONNECTOR_M: f64 = 1e-6;
+
+/// A connection along a line shorter than this many turning radii is one turn between its
+/// ends: following its corners would only add manoeuvres.
+const DIRECT_CONNECTION_RADII: f64 = 6.0;
+
+/// Builds the drivable path of a route (see the module documentation). `area` is where turns
+/// must stay (the field less its obstacles); without it turns are not checked.
+///
+/// ```
+/// use furrow::{decompose::cluster_swaths, path::{build_path, SegmentKind, turn::Vehicle}};
+/// use furrow::{route::{plan_route, RouteSettings}, swath::generate};
+/// use geo::{polygon, MultiPolygon};
+///
+/// let field = polygon![(x: 0., y: 0.), (x: 30., y: 0.), (x: 30., y: 100.), (x: 0., y: 100.)];
+/// let swaths = generate(&MultiPolygon::new(vec![field]), 0.0, 6.0, 6.0)?;
+/// let route = plan_route(&swaths, &cluster_swaths(&swaths), &[], &RouteSettings::default());
+/// let vehicle = Vehicle { width: 6.0, turn_radius: 3.0, ..Vehicle::default() };
+/// let path = build_path(&route, &swaths, &[], &vehicle, None);
+/// let turns: Vec<_> = path.segments.iter().filter(|s| s.kind == SegmentKind::Turn).collect();
+/// assert_eq!(turns.len(), 4); // five swaths, four turns between them
+/// // Swaths 6 m apart, a 3 m radius: each turn is a U of two quarter circles, πr long.
+/// assert!(turns.iter().all(|t| (t.length() - 3.0 * std::f64::consts::PI).abs() < 1e-9));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn build_path(
+    route: &Route,
+    swaths: &Swaths,
+    passes: &[HeadlandPass],
+    vehicle: &Vehicle,
+    area: Option<&Area>,
+) -> Path {
+    // The worked segments first, each with the connection the route found into it.
+    struct Worked {
+        segment: PathSegment,
+        block: Option<usize>,
+        into: Option<LineString>,
+    }
+    let mut worked: Vec<Worked> = Vec::with_capacity(route.steps.len());
+    let mut last_point: Option<Coord> = None;
+    for (k, step) in route.steps.iter().enumerate() {
+        let into = route
+            .connections
+            .get(k)
+            .and_then(|c| c.as_ref())
+            .map(|c| c.line.clone());
+        let (pieces, kind, block) = match *step {
+            RouteStep::Swath {
+                swath,
+                reversed,
+                block,
+            } => {
+                let Some(s) = swaths.swaths.get(swath) else {
+                    continue;
+                };
+                let (a, b) = if reversed {
+                    (s.centre.end, s.centre.start)
+                } else {
+                    (s.centre.start, s.centre.end)
+                };
+                let d = b - a;
+                let start = Pose::new(a.x, a.y, d.y.atan2(d.x));
+                (
+                    vec![Segment::line(start, d.x.hypot(d.y), Gear::Forward)],
+                    SegmentKind::Swath,
+                    Some(block),
+                )
+            }
+            RouteStep::HeadlandPass { pass, reversed } => {
+                let Some(p) = passes.get(pass) else {
+                    continue;
+                };
+                let line = if p.closed {
+                    // Where the connection into it ends, else where the machine is.
+                    let at = into
+                        .as_ref()
+                        .and_then(|c| c.0.last().copied())
+                        .or(last_point);
+                    let (_, entry) = nearest_on_ring(&p.line, at);
+                    ring_starting_at(&p.line, entry)
+                } else if reversed {
+                    LineString::new(p.line.0.iter().rev().copied().collect())
+                } else {
+                    p.line.clone()
+                };
+                (follow(&line.0, vehicle), SegmentKind::HeadlandPass, None)
+            }
+        };
+        if pieces.is_empty() {
+            continue;
+        }
+        let segment = PathSegment::new(kind, pieces, Some(k));
+        last_point = segment.end().map(|p| Coord { x: p.x, y: p.y });
+        worked.push(Worked {
+            segment,
+            block,
+            into,
+        });
+    }
+    let mut segments: Vec<PathSegment> = Vec::with_capacity(worked.len() * 2 + 2);
+    let mut previous: Option<(Pose, Option<usize>)> = None;
+    for w in worked {
+        let Some(start) = w.segment.start() else {
+            continue;
+        };
+        match previous {
+            Some((from, from_block)) => {
+                let same_block = w.block.is_some() && w.block == from_block;
+                if same_block && w.into.is_none() {
+                    if let Some(t) = swath_turn(from, start, vehicle, area) {
+                        segments.push(t);
+                    }
+                } else if let Some(c) =
+                    connection(Some(from), Some(start), w.into.as_ref(), vehicle)
+                {
+                    segments.push(c);
+                }
+            }
+            None => {
+                // From the entrance: along the route's line into the first pose.
+                if let Some(c) = connection(None, Some(start), w.into.as_ref(), vehicle) {
+                    segments.push(c);
+                }
+            }
+        }
+        previous = w.segment.end().map(|e| (e, w.block));
+        segments.push(w.segment);
+    }
+    if let Some(c) = &route.finish {
+        if let Some(f) = connection(previous.map(|p| p.0), None, Some(&c.line), vehicle) {
+            segments.push(f);
+        }
+    }
+    Path { segments }
+}
+
+/// The turn between two swath ends of a block.
+fn swath_turn(from: Pose, to: Pose, v: &Vehicle, area: Option<&Area>) -> Option<PathSegment> {
+    if from.distance(&to) < MIN_CONNECTOR_M && from.heading_change(&to).abs() < 1e-9 {
+        return None;
+    }
+    let t = match area {
+        Some(a) => v.turn(from, to, a),
+        None => {
+            let mut t = v.shortest(from, to);
+            t.inside = true;
+            t
+        }
+    };
+    let (s, c) = from.heading.sin_cos();
+    let mut reach: f64 = 0.0;
+    for p in &t.segments {
+        for q in turn::chord_points(p) {
+            reach = reach.max((q.x - from.x) * c + (q.y - from.y) * s);
+        }
+    }
+    let mut seg = PathSegment::new(SegmentKind::Turn, t.segments, None);
+    seg.turn = Some(TurnReport {
+        form: t.form,
+        inside: t.inside,
+        reach_m: reach,
+    });
+    Some(seg)
+}
+
+/// A connection from `from` (or the line's first point) to `to` (or its last point) along
+/// `line`: the line's middle followed with its corners rounded, joined to the end poses by the
+/// vehicle's cheapest turns onto it (each at the point along the line where joining costs least).
+/// Short lines, and none, give one turn between the poses.
+fn connection(
+    from: Option<Pose>,
+    to: Option<Pose>,
+    line: Option<&LineString>,
+    v: &Vehicle,
+) -> Option<PathSegment> {
+    let pts: Vec<Coord> = line.map(|l| l.0.clone()).unwrap_or_default();
+    let length = polyline_length(&pts);
+    let direct = length < DIRECT_CONNECTION_RADII * v.turn_radius;
+    let pieces = match (from, to) {
+        (Some(a), Some(b)) if direct || pts.len() < 2 => {
+            if a.distance(&b) < MIN_CONNECTOR_M && a.heading_change(&b).abs() < 1e-9 {
+                return None;
+            }
+            v.shortest(a, b).segments
+        }
+        _ => {
+            // Where to leave the line's start and end: the join that costs least over what it
+            // saves of the line.
+            let half = length / 2.0;
+            let start_at = from.map_or(0.0, |a| {
+                best_join(&pts, half, v, |p| v.shortest(a, p).length(), true)
+            });
+            let end_at = to.map_or(0.0, |b| {
+                best_join(&pts, half, v, |p| v.shortest(p, b).length(), false)
+            });
+            let middle = cut_polyline(&pts, start_at, length - end_at);
+            let mut along = follow(&middle, v);
+            if along.is_empty() {
+                match (from, to) {
+                    (Some(a), Some(b)) => along = v.shortest(a, b).segments,
+                    _ => return None,
+                }
+            } else {
+                if let (Some(a), Some(m0)) = (from, along.first().map(|s| s.start)) {
+                    let mut pieces = v.shortest(a, m0).segments;
+                    pieces.append(&mut along);
+                    along = pieces;
+                }
+                if let (Some(b), Some(m1)) = (to, curve::end(&along)) {
+                    along.extend(v.shortest(m1, b).segments);
+                }
+            }
+            along
+        }
+    };
+    let pieces: Vec<Segment> = pieces.into_iter().filter(|p| p.length > 1e-12).collect();
+    if pieces.is_empty() {
+        return None;
+    }
+    Some(PathSegment::new(SegmentKind::Connection, pieces, None))
+}
+
+/// Distances along a connection's line (in turning radii) at which a join from the pose before
+/// (or to the pose after) is tried.
+const JOIN_RADII: [f64; 6] = [0.5, 1.0, 1.5, 2.0, 3.0, 4.0];
+
+/// The distance from the line's start (`at_start`) or end at which joining it costs least:
+/// the join's length less the stretch of line it replaces, over [`JOIN_RADII`] up to `most`.
+fn best_join(
+    pts: &[Coord],
+    most: f64,
+    v: &Vehicle,
+    join: impl Fn(Pose) -> f64,
+    at_start: bool,
+) -> f64 {
+    let length = polyline_length(pts);
+    let mut best = (f64::INFINITY, 0.0);
+    for k in JOIN_RADII {
+        let d = (k * v.turn_radius).min(most);
+        let Some(p) = polyline_pose(pts, if at_start { d } else { length - d }) else {
+            continue;
+        };
+        let cost = join(p) - d;
+        if cost < best.0 - 1e-9 {
+            best = (cost, d);
+        }
+    }
+    best.1
+}
+
+/// Length of a polyline, metres.
+fn polyline_length(pts: &[Coord]) -> f64 {
+    pts.windows(2)
+        .map(|w| (w[1].x - w[0].x).hypot(w[1].y - w[0].y))
+        .sum()
+}
+
+/// The pose `d` metres along a polyline, facing along its edge there.
+fn polyline_pose(pts: &[Coord], d: f64) -> Option<Pose> {
+    let mut s = 0.0;
+    let mut last = None;
+    for w in pts.windows(2) {
+        let e = w[1] - w[0];
+        let l = e.x.hypot(e.y);
+        if l < 1e-9 {
+            continue;
+        }
+        let heading = e.y.atan2(e.x);
+        if s + l >= d {
+            let t = ((d - s) / l).clamp(0.0, 1.0);
+            return Some(Pose::new(w[0].x + e.x * t, w[0].y + e.y * t, heading));
+        }
+        s += l;
+        last = Some(Pose::new(w[1].x, w[1].y, heading));
+    }
+    last
+}
+
+/// The part of a polyline from `a` to `b` metres along it.
+fn cut_polyline(pts: &[Coord], a: f64, b: f64) -> Vec<Coord> {
+    let mut out = Vec::new();
+    if b <= a {
+        return out;
+    }
+    let mut s = 0.0;
+    for w in pts.windows(2) {
+        let e = w[1] - w[0];
+        let l = e.x.hypot(e.y);
+        let (s0, s1) = (s, s + l);
+        s = s1;
+        if l < 1e-12 || s1 < a || s0 > b {
+            continue;
+        }
+        let at = |x: f64| w[0] + e * ((x - s0) / l).clamp(0.0, 1.0);
+        if out.is_empty() {
+            out.push(at(a.max(s0)));
+        }
+        out.push(at(b.min(s1)));
+    }
+    out
+}
+
+/// A closed ring re-started at a point on it (or at its first vertex without one).
+fn ring_starting_at(ring: &LineString, at: Option<Coord>) -> LineString {
+    let pts = &ring.0;
+    let Some(p) = at else {
+        return ring.clone();
+    };
+    if pts.len() < 2 {
+        return ring.clone();
+    }
+    // The edge the point lies on: the one it is nearest to.
+    let mut best = (f64::INFINITY, 0);
+    for (i, w) in pts.windows(2).enumerate() {
+        let d = point_segment_distance(p, w[0], w[1]);
+        if d < best.0 {
+            best = (d, i);
+        }
+    }
+    let i = best.1;
+    let mut out = Vec::with_capacity(pts.len() + 2);
+    out.push(p);
+    // From the end of edge i round to its start (the ring's last point repeats its first).
+    out.extend_from_slice(&pts[i + 1..]);
+    out.extend_from_slice(&pts[1..=i]);
+    out.push(p);
+    out.dedup_by(|a, b| (a.x - b.x).hypot(a.y - b.y) < MIN_CONNECTOR_M);
+    LineString::new(out)
+}
+
+impl Path {
+    /// Total length of the segments of a kind, metres.
+    pub fn length_of(&self, kind: SegmentKind) -> f64 {
+        self.segments
+            .iter()
+            .filter(|s| s.kind == kind)
+            .map(PathSegment::length)
+            .sum()
+    }
+
+    /// Number of segments of a kind.
+    pub fn count_of(&self, kind: SegmentKind) -> usize {
+        self.segments.iter().filter(|s| s.kind == kind).count()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use geo::coord;
+
+    #[test]
+    fn ring_restarts_at_a_point_on_an_edge() {
+        let ring = LineString::from(vec![(0., 0.), (10., 0.), (10., 10.), (0., 10.), (0., 0.)]);
+        let r = ring_starting_at(&ring, Some(coord! { x: 10.0, y: 4.0 }));
+        assert_eq!(r.0.first(), Some(&coord! { x: 10.0, y: 4.0 }));
+        assert_eq!(r.0.last(), Some(&coord! { x: 10.0, y: 4.0 }));
+        assert!((Euclidean.length(&r) - 40.0).abs() < 1e-9);
+        assert_eq!(r.0.len(), 6);
+    }
+
+    #[test]
+    fn ring_restarts_at_a_vertex() {
+        let ring = LineString::from(vec![(0., 0.), (10., 0.), (10., 10.), (0., 10.), (0., 0.)]);
+        let r = ring_starting_at(&ring, Some(coord! { x: 10.0, y: 10.0 }));
+        assert_eq!(r.0.len(), 5);
+        assert!((Euclidean.length(&r) - 40.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn segments_are_continuous() {
+        use crate::decompose::cluster_swaths;
+        use crate::headland::HeadlandPass;
+        use crate::route::{plan_route, RouteSettings};
+        use crate::swath::generate;
+        use geo::{polygon, MultiPolygon};
+        let inner = polygon![(x: 6., y: 6.), (x: 94., y: 6.), (x: 94., y: 94.), (x: 6., y: 94.)];
+        let passes = vec![HeadlandPass {
+            index: 1,
+            line: LineString::from(vec![(3., 3.), (97., 3.), (97., 97.), (3., 97.), (3., 3.)]),
+            closed: true,
+            around: crate::headland::PassAround::Field,
+        }];
+        let swaths = generate(&MultiPolygon::new(vec![inner]), 0.4, 6.0, 6.0).unwrap();
+        let route = plan_route(
+            &swaths,
+            &cluster_swaths(&swaths),
+            &passes,
+            &RouteSettings::default(),
+        );
+        let path = build_path(&route, &swaths, &passes, &Vehicle::default(), None);
+        for w in path.segments.windows(2) {
+            let a = *w[0].line.0.last().unwrap();
+            let b = w[1].line.0[0];
+            assert!((a.x - b.x).hypot(a.y - b.y) < 1e-9);
+        }
+        assert_eq!(path.count_of(SegmentKind::HeadlandPass), 1);
+        assert_eq!(path.count_of(SegmentKind::Connection), 1);
+    }
+}

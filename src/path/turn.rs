@@ -1,0 +1,553 @@
+//! Turns the machine can drive: the candidates between two poses, the classic headland turns,
+//! and the choice of the cheapest that stays in the field.
+//!
+//! A [`Vehicle`] knows its minimum turning radius, whether it may reverse, and (optionally) how
+//! fast it can change its curvature. Between two poses it offers every form it can drive:
+//! - all six Dubins words ([`super::dubins`]), forward only;
+//! - with reversing, every Reeds-Shepp path ([`super::reeds_shepp`]) and the classic
+//!   three-point (fishtail) turn between neighbouring swaths: a quarter circle forward, straight
+//!   back, a quarter circle forward, which stays within one turning radius of the swath ends;
+//! - with a curvature rate, instead the continuous-curvature Dubins words
+//!   ([`super::continuous`]): every arc entered and left along a clothoid.
+//!
+//! Dubins' CSC words between neighbouring swath ends are the classic U-turn (spacing at least
+//! twice the radius) and its CCC words the loop (bulb, omega) turn (spacing under twice the
+//! radius); [`TurnForm::name`] calls them so. Each cusp (change of gear) costs
+//! [`CUSP_PENALTY_M`] on top of the length: stopping and changing gear takes time.
+//! [`Vehicle::turn`] orders the candidates by cost and keeps the first that [`Area::contains`]
+//! (the field less its obstacles); where none fits it keeps the cheapest and says so.
+//!
+//! ```
+//! use furrow::path::curve::Pose;
+//! use furrow::path::turn::Vehicle;
+//! use std::f64::consts::PI;
+//!
+//! let v = Vehicle { turn_radius: 6.0, ..Vehicle::default() };
+//! // From the end of a swath running east to the next one 12 m north, running west: a U-turn
+//! // of two quarter circles, πr long.
+//! let t = v.shortest(Pose::new(0.0, 0.0, 0.0), Pose::new(0.0, 12.0, PI));
+//! assert!((t.length() - 6.0 * PI).abs() < 1e-9);
+//! assert_eq!(t.form.name(), "u-turn");
+//! ```
+
+use super::continuous::{cc_dubins_all, cc_turn, cc_u_turn, CcSettings};
+use super::curve::{self, Gear, Pose, Segment};
+use super::dubins::dubins_all;
+use super::reeds_shepp::reeds_shepp_all;
+use geo::{Coord, Line, LineString, Polygon};
+use rstar::{RTree, RTreeObject, AABB};
+use std::f64::consts::FRAC_PI_2;
+
+/// What a turn costs per change of gear, metres of driving: stopping, changing gear and
+/// starting again take a few seconds.
+pub const CUSP_PENALTY_M: f64 = 5.0;
+
+/// The machine as the path sees it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Vehicle {
+    /// Working width, metres.
+    pub width: f64,
+    /// Minimum turning radius, metres.
+    pub turn_radius: f64,
+    /// Whether it may reverse.
+    pub reverse: bool,
+    /// Largest change of curvature per metre driven, 1/m²; `None`: arcs join lines directly.
+    pub curvature_rate: Option<f64>,
+    /// Working speed, metres per second.
+    pub working_speed: f64,
+    /// Speed in turns and connections, metres per second.
+    pub turning_speed: f64,
+}
+
+impl Default for Vehicle {
+    fn default() -> Self {
+        Vehicle {
+            width: 6.0,
+            turn_radius: 8.0,
+            reverse: false,
+            curvature_rate: None,
+            working_speed: 8.0 / 3.6,
+            turning_speed: 5.0 / 3.6,
+        }
+    }
+}
+
+/// The shape of a turn.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum TurnForm {
+    /// A Dubins path (forward only), by its word (`LSL` …).
+    Dubins(&'static str),
+    /// A Reeds-Shepp path, by its word (`L+S+R-` …).
+    ReedsShepp(String),
+    /// A continuous-curvature Dubins path, by its word.
+    ContinuousCurvature(&'static str),
+    /// The three-point (fishtail) turn: forward, straight back, forward.
+    ThreePoint,
+    /// Nothing to turn: the poses meet.
+    None,
+}
+
+impl TurnForm {
+    /// Its name in the plan output: `u-turn` (a Dubins CSC word), `loop` (CCC), `three-point`,
+    /// `reeds-shepp` (with its word in [`TurnForm::word`]), `cc-u-turn`, `cc-loop`, `none`.
+    pub fn name(&self) -> &'static str {
+        match self {
+            TurnForm::Dubins(w) if is_ccc(w) => "loop",
+            TurnForm::Dubins(_) => "u-turn",
+            TurnForm::ContinuousCurvature(w) if is_ccc(w) => "cc-loop",
+            TurnForm::ContinuousCurvature(_) => "cc-u-turn",
+            TurnForm::ReedsShepp(_) => "reeds-shepp",
+            TurnForm::ThreePoint => "three-point",
+            TurnForm::None => "none",
+        }
+    }
+
+    /// Its word (`LSL`, `L+R-L+` …), empty for the three-point turn and none.
+    pub fn word(&self) -> String {
+        match self {
+            TurnForm::Dubins(w) | TurnForm::ContinuousCurvature(w) => (*w).to_string(),
+            TurnForm::ReedsShepp(w) => w.clone(),
+            TurnForm::ThreePoint | TurnForm::None => String::new(),
+        }
+    }
+}
+
+fn is_ccc(word: &str) -> bool {
+    !word.contains('S')
+}
+
+/// A turn: its form and the segments driven.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Turn {
+    /// Its shape.
+    pub form: TurnForm,
+    /// The segments, each starting where the one before ends.
+    pub segments: Vec<Segment>,
+    /// Whether it stays in the area it was checked against (true when not checked).
+    pub inside: bool,
+}
+
+impl Turn {
+    /// Length driven, metres.
+    pub fn length(&self) -> f64 {
+        curve::length(&self.segments)
+    }
+
+    /// Number of changes of gear.
+    pub fn cusps(&self) -> usize {
+        cusps(&self.segments)
+    }
+
+    /// Length plus [`CUSP_PENALTY_M`] per cusp: what the choice minimises.
+    pub fn cost(&self) -> f64 {
+        self.length() + CUSP_PENALTY_M * self.cusps() as f64
+    }
+}
+
+/// Number of changes of gear along segments.
+pub fn cusps(segments: &[Segment]) -> usize {
+    segments
+        .windows(2)
+        .filter(|w| w[0].gear != w[1].gear && w[0].length > 0.0 && w[1].length > 0.0)
+        .count()
+}
+
+impl Vehicle {
+    /// The continuous-curvature settings, if the vehicle has a curvature rate.
+    fn cc(&self) -> Option<CcSettings> {
+        self.curvature_rate.map(|rate| CcSettings {
+            max_curvature: 1.0 / self.turn_radius,
+            max_sharpness: rate,
+        })
+    }
+
+    /// Every form of turn from `from` to `to` the vehicle can drive, cheapest first
+    /// (see the module documentation).
+    pub fn candidates(&self, from: Pose, to: Pose) -> Vec<Turn> {
+        let r = self.turn_radius;
+        let mut out: Vec<Turn> = Vec::new();
+        if from.distance(&to) < 1e-9 && from.heading_change(&to).abs() < 1e-9 {
+            return vec![Turn {
+                form: TurnForm::None,
+                segments: Vec::new(),
+                inside: true,
+            }];
+        }
+        if let Some(cc) = self.cc() {
+            for p in cc_dubins_all(from, to, &cc) {
+                out.push(Turn {
+                    form: TurnForm::ContinuousCurvature(p.word),
+                    segments: p.segments,
+                    inside: true,
+                });
+            }
+            // Between neighbouring swath ends, also the U-turn that keeps to the headland
+            // (and the single wide turn where it is shorter).
+            let rel = to.relative_to(&from);
+            if (rel.heading.abs() - std::f64::consts::PI).abs() < 1e-9 && rel.x.abs() < 1e-6 {
+                if let Some(p) = cc_u_turn(from, rel.y.abs(), rel.y > 0.0, &cc) {
+                    if curve::end(&p.segments).is_some_and(|e| {
+                        e.distance(&to) < 1e-6 && e.heading_change(&to).abs() < 1e-9
+                    }) {
+                        out.push(Turn {
+                            form: TurnForm::ContinuousCurvature(p.word),
+                            segments: p.segments,
+                            inside: true,
+                        });
+                    }
+                }
+            }
+        } else {
+            for p in dubins_all(from, to, r) {
+                out.push(Turn {
+                    form: TurnForm::Dubins(p.word.as_str()),
+                    segments: p.segments(from),
+                    inside: true,
+                });
+            }
+            if self.reverse {
+                if let Some(t) = three_point(from, to, r) {
+                    out.push(t);
+                }
+                for p in reeds_shepp_all(from, to, r) {
+                    out.push(Turn {
+                        form: TurnForm::ReedsShepp(p.word()),
+                        segments: p.segments(from),
+                        inside: true,
+                    });
+                }
+            }
+        }
+        // Zero-length pieces say nothing; drop them so that cusps count real changes.
+        for t in &mut out {
+            t.segments.retain(|s| s.length > 1e-12);
+        }
+        out.sort_by(|a, b| a.cost().total_cmp(&b.cost()));
+        out
+    }
+
+    /// The cheapest turn from `from` to `to`, unchecked. Falls back to a straight line (and
+    /// `inside: false`) only if no form exists, which does not happen for finite poses.
+    pub fn shortest(&self, from: Pose, to: Pose) -> Turn {
+        self.candidates(from, to)
+            .into_iter()
+            .next()
+            .unwrap_or_else(|| straight(from, to))
+    }
+
+    /// The cheapest turn from `from` to `to` that stays in `area`, or the cheapest of all
+    /// (with `inside: false`) if none does.
+    pub fn turn(&self, from: Pose, to: Pose, area: &Area) -> Turn {
+        let candidates = self.candidates(from, to);
+        let mut first: Option<Turn> = None;
+        for mut t in candidates {
+            if area.contains(&t.segments) {
+                t.inside = true;
+                return t;
+            }
+            if first.is_none() {
+                t.inside = false;
+                first = Some(t);
+            }
+        }
+        first.unwrap_or_else(|| straight(from, to))
+    }
+
+    /// Tangent length of a corner of `deflection` radians rounded at the vehicle's limits: how
+    /// far before the corner the rounding starts (and after it ends), metres. Infinite where it
+    /// cannot be rounded (a deflection of π or more).
+    pub fn tangent_length(&self, deflection: f64) -> f64 {
+        let d = deflection.abs();
+        if d >= std::f64::consts::PI - 1e-9 {
+            return f64::INFINITY;
+        }
+        if d < 1e-12 {
+            return 0.0;
+        }
+        match self.cc() {
+            Some(cc) => {
+                let segs = cc_turn(Pose::new(0.0, 0.0, 0.0), d, &cc);
+                let Some(e) = curve::end(&segs) else {
+                    return self.turn_radius * (d / 2.0).tan();
+                };
+                // The corner of the lines y = 0 and the end's, which the symmetric turn
+                // reaches as far before as after.
+                e.x - e.y / d.tan()
+            }
+            None => self.turn_radius * (d / 2.0).tan(),
+        }
+    }
+
+    /// The rounding of a corner of `deflection` radians (positive to the left) from `start`:
+    /// an arc of the turning radius, or a continuous-curvature turn.
+    pub fn fillet(&self, start: Pose, deflection: f64) -> Vec<Segment> {
+        match self.cc() {
+            Some(cc) => cc_turn(start, deflection, &cc),
+            None => vec![Segment::arc(
+                start,
+                self.turn_radius * deflection.abs(),
+                deflection.signum() / self.turn_radius,
+                Gear::Forward,
+            )],
+        }
+    }
+}
+
+/// A straight line between two poses (the last resort: it may not match the end heading).
+fn straight(from: Pose, to: Pose) -> Turn {
+    let heading = (to.y - from.y).atan2(to.x - from.x);
+    Turn {
+        form: TurnForm::None,
+        segments: vec![Segment::line(
+            Pose::new(from.x, from.y, heading),
+            from.distance(&to),
+            Gear::Forward,
+        )],
+        inside: false,
+    }
+}
+
+/// The three-point (fishtail) turn between the ends of neighbouring swaths: from the end of one
+/// (facing out of the field) a quarter circle forward towards the next, straight back, and a
+/// quarter circle forward into it; `None` unless `to` faces the opposite way of `from`, at most
+/// twice the radius to one side of it and level with its end (within a millimetre along).
+fn three_point(from: Pose, to: Pose, r: f64) -> Option<Turn> {
+    let rel = to.relative_to(&from);
+    if (rel.heading.abs() - std::f64::consts::PI).abs() > 1e-6 || rel.x.abs() > 1e-3 {
+        return None;
+    }
+    let spacing = rel.y.abs();
+    if spacing > 2.0 * r || spacing < 1e-9 {
+        return None;
+    }
+    let left = rel.y > 0.0;
+    let k = if left { 1.0 / r } else { -1.0 / r };
+    let quarter = r * FRAC_PI_2;
+    let first = Segment::arc(from, quarter, k, Gear::Forward);
+    let back = Segment::line(first.end(), 2.0 * r - spacing, Gear::Reverse);
+    let last = Segment::arc(back.end(), quarter, k, Gear::Forward);
+    let mut segments = vec![first];
+    if back.length > 1e-12 {
+        segments.push(back);
+    }
+    segments.push(last);
+    Some(Turn {
+        form: TurnForm::ThreePoint,
+        segments,
+        inside: true,
+    })
+}
+
+/// Where the machine may drive: inside the field's boundary and outside its obstacles. Edges in
+/// an R-tree: a turn is checked by its chords (at most 5 mm off the curve) against them.
+#[derive(Debug, Clone)]
+pub struct Area {
+    edges: RTree<Edge>,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Edge(Line);
+
+impl RTreeObject for Edge {
+    type Envelope = AABB<[f64; 2]>;
+    fn envelope(&self) -> Self::Envelope {
+        AABB::from_corners(
+            [self.0.start.x, self.0.start.y],
+            [self.0.end.x, self.0.end.y],
+        )
+    }
+}
+
+/// Chords of a sampled curve are at most this far off it, metres.
+const CHORD_TOLERANCE_M: f64 = 0.005;
+
+impl Area {
+    /// The area inside `boundary` (with its holes) and outside `obstacles`.
+    pub fn new(boundary: &Polygon, obstacles: &[&Polygon]) -> Self {
+        let mut edges = Vec::new();
+        let mut add = |ring: &LineString| {
+            for l in ring.lines() {
+                if l.start != l.end {
+                    edges.push(Edge(l));
+                }
+            }
+        };
+        add(boundary.exterior());
+        for ring in boundary.interiors() {
+            add(ring);
+        }
+        for o in obstacles {
+            add(o.exterior());
+            for ring in o.interiors() {
+                add(ring);
+            }
+        }
+        Area {
+            edges: RTree::bulk_load(edges),
+        }
+    }
+
+    /// Whether a run of segments that starts inside stays inside: none of its chords crosses
+    /// an edge.
+    pub fn contains(&self, segments: &[Segment]) -> bool {
+        let mut previous: Option<Coord> = None;
+        for s in segments {
+            for p in chord_points(s) {
+                if let Some(a) = previous {
+                    if self.crosses(a, p) {
+                        return false;
+                    }
+                }
+                previous = Some(p);
+            }
+        }
+        true
+    }
+
+    /// Whether the chord from `a` to `b` crosses an edge.
+    fn crosses(&self, a: Coord, b: Coord) -> bool {
+        let envelope = AABB::from_corners([a.x, a.y], [b.x, b.y]);
+        let chord = Line::new(a, b);
+        self.edges
+            .locate_in_envelope_intersecting(&envelope)
+            .any(|e| segments_intersect(&chord, &e.0))
+    }
+}
+
+/// Points along a segment whose chords stay within [`CHORD_TOLERANCE_M`] of it, ends included.
+pub fn chord_points(s: &Segment) -> impl Iterator<Item = Coord> + '_ {
+    chord_poses(s).map(|(p, _)| Coord { x: p.x, y: p.y })
+}
+
+/// The poses (with the steering curvature there) at [`chord_points`].
+pub fn chord_poses(s: &Segment) -> impl Iterator<Item = (Pose, f64)> + '_ {
+    let k = s.max_curvature();
+    let step = if k > 1e-12 {
+        (8.0 * CHORD_TOLERANCE_M / k).sqrt()
+    } else {
+        f64::INFINITY
+    };
+    let n = if step.is_finite() {
+        ((s.length / step).ceil() as usize).clamp(1, 100_000)
+    } else {
+        1
+    };
+    (0..=n).map(move |i| {
+        let at = s.length * i as f64 / n as f64;
+        (s.pose_at(at), s.curvature_at(at))
+    })
+}
+
+/// Whether two closed segments meet.
+fn segments_intersect(a: &Line, b: &Line) -> bool {
+    let d = |p: Coord, q: Coord, r: Coord| (q.x - p.x) * (r.y - p.y) - (q.y - p.y) * (r.x - p.x);
+    let (d1, d2) = (d(b.start, b.end, a.start), d(b.start, b.end, a.end));
+    let (d3, d4) = (d(a.start, a.end, b.start), d(a.start, a.end, b.end));
+    if ((d1 > 0.0 && d2 < 0.0) || (d1 < 0.0 && d2 > 0.0))
+        && ((d3 > 0.0 && d4 < 0.0) || (d3 < 0.0 && d4 > 0.0))
+    {
+        return true;
+    }
+    // Touching counts as leaving only where a point lies on the other segment.
+    let on = |p: Coord, q: Coord, r: Coord, dd: f64| {
+        dd == 0.0
+            && r.x >= p.x.min(q.x)
+            && r.x <= p.x.max(q.x)
+            && r.y >= p.y.min(q.y)
+            && r.y <= p.y.max(q.y)
+    };
+    on(b.start, b.end, a.start, d1)
+        || on(b.start, b.end, a.end, d2)
+        || on(a.start, a.end, b.start, d3)
+        || on(a.start, a.end, b.end, d4)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use geo::polygon;
+    use std::f64::consts::PI;
+
+    #[test]
+    fn a_loop_turn_for_close_swaths_and_three_points_when_reversing() {
+        let v = Vehicle {
+            turn_radius: 6.0,
+            ..Vehicle::default()
+        };
+        let from = Pose::new(0.0, 0.0, 0.0);
+        let to = Pose::new(0.0, 3.0, PI);
+        let t = v.shortest(from, to);
+        assert_eq!(t.form.name(), "loop");
+        // r(π + 4 acos((d + 2r)/4r)), the turn model's loop.
+        let model = 6.0 * (PI + 4.0 * (15.0f64 / 24.0).acos());
+        assert!((t.length() - model).abs() < 1e-6, "{} {model}", t.length());
+        let reversing = Vehicle { reverse: true, ..v };
+        let all = reversing.candidates(from, to);
+        let fishtail = all.iter().find(|t| t.form == TurnForm::ThreePoint).unwrap();
+        assert!((fishtail.length() - (6.0 * PI + 9.0)).abs() < 1e-9);
+        assert_eq!(fishtail.cusps(), 2);
+        let e = curve::end(&fishtail.segments).unwrap();
+        assert!(e.distance(&to) < 1e-9 && e.heading_change(&to).abs() < 1e-9);
+    }
+
+    #[test]
+    fn a_turn_that_leaves_the_area_gives_way_to_one_that_fits() {
+        // Swath ends 10 m from the boundary: the loop bulges out further than that; the
+        // three-point turn reaches r = 6 m out.
+        let area = Area::new(
+            &polygon![(x: -100., y: -50.), (x: 10., y: -50.), (x: 10., y: 50.), (x: -100., y: 50.)],
+            &[],
+        );
+        let v = Vehicle {
+            turn_radius: 6.0,
+            reverse: true,
+            ..Vehicle::default()
+        };
+        let from = Pose::new(0.0, 0.0, 0.0);
+        let to = Pose::new(0.0, 3.0, PI);
+        let forward = Vehicle {
+            reverse: false,
+            ..v
+        };
+        let cheapest = forward.shortest(from, to);
+        assert_eq!(cheapest.form.name(), "loop");
+        assert!(!area.contains(&cheapest.segments));
+        let t = forward.turn(from, to, &area);
+        assert!(t.inside && area.contains(&t.segments) && t.length() > cheapest.length());
+        let t = v.turn(from, to, &area);
+        assert!(t.inside && area.contains(&t.segments));
+        let fishtail = three_point(from, to, 6.0).unwrap();
+        assert!(area.contains(&fishtail.segments));
+        assert!(t.cost() <= fishtail.cost() + 1e-9, "{:?}", t.form);
+        // In a corridor 5 m wide no forward turn fits: the cheapest is kept and marked. A
+        // machine that may reverse turns round in it (Reeds-Shepp, cusps and short arcs).
+        let tight = Area::new(
+            &polygon![(x: -100., y: -1.), (x: 1., y: -1.), (x: 1., y: 4.), (x: -100., y: 4.)],
+            &[],
+        );
+        let t = forward.turn(from, to, &tight);
+        assert!(!t.inside && t.form.name() == "loop");
+        let t = v.turn(from, to, &tight);
+        assert!(t.inside && t.cusps() >= 2, "{:?}", t.form);
+    }
+
+    #[test]
+    fn tangent_lengths_match_the_fillets() {
+        for rate in [None, Some(0.2)] {
+            let v = Vehicle {
+                turn_radius: 5.0,
+                curvature_rate: rate,
+                ..Vehicle::default()
+            };
+            for d in [0.3, 1.0, -1.2, 2.5] {
+                let t = v.tangent_length(d);
+                let start = Pose::new(-t, 0.0, 0.0);
+                let e = curve::end(&v.fillet(start, d)).unwrap();
+                // It ends on the other line, t past the corner at the origin.
+                let expect = Pose::new(t * d.cos(), t * d.sin(), d);
+                assert!(e.distance(&expect) < 1e-6, "{rate:?} {d}: {e:?} {expect:?}");
+                assert!(e.heading_change(&expect).abs() < 1e-9);
+            }
+        }
+    }
+}

@@ -1,0 +1,267 @@
+//! The drivable path on every corpus field, for a machine that only drives forward, one that
+//! may reverse, and one with a curvature rate (continuous-curvature turns): curvature never
+//! exceeds 1/radius, position and heading are continuous, the machine reverses only where it
+//! may, the sampled path keeps its spacing and follows its curvature, and turns stay in the
+//! field where the headland has room (two passes or more), or are reported with their cause.
+
+mod common;
+
+use common::corpus::valid_fields;
+use furrow::path::curve::{Gear, Pose};
+use furrow::path::sample::sample;
+use furrow::path::turn::Vehicle;
+use furrow::path::SegmentKind;
+use furrow::{plan_geojson, Plan, PlanOptions, WarningCode};
+
+fn plan(text: &str, options: &PlanOptions, name: &str) -> Plan {
+    plan_geojson(text, options).unwrap_or_else(|e| panic!("{name}: {e}"))
+}
+
+/// The machines every field is planned for.
+fn machines(base: &PlanOptions) -> Vec<(&'static str, PlanOptions)> {
+    vec![
+        ("forward", base.clone()),
+        (
+            "reversing",
+            PlanOptions {
+                reverse: true,
+                ..base.clone()
+            },
+        ),
+        (
+            "continuous-curvature",
+            PlanOptions {
+                curvature_rate: Some(0.1),
+                ..base.clone()
+            },
+        ),
+    ]
+}
+
+fn check_path(plan: &Plan, what: &str) {
+    let r = plan.options.turn_radius;
+    let mut previous: Option<Pose> = None;
+    let mut pieces = 0;
+    for (k, seg) in plan.path.segments.iter().enumerate() {
+        assert!(!seg.pieces.is_empty(), "{what}: segment {k} has no pieces");
+        for p in &seg.pieces {
+            pieces += 1;
+            assert!(
+                p.max_curvature() <= 1.0 / r + 1e-6,
+                "{what}: segment {k} ({:?}) curvature {} over 1/{r}",
+                seg.kind,
+                p.max_curvature()
+            );
+            if !plan.options.reverse {
+                assert_eq!(p.gear, Gear::Forward, "{what}: reverses in segment {k}");
+            }
+            if plan.options.curvature_rate.is_none() {
+                assert_eq!(p.sharpness, 0.0, "{what}: a clothoid without a rate");
+            } else if let Some(rate) = plan.options.curvature_rate {
+                assert!(p.sharpness.abs() <= rate + 1e-9, "{what}: sharpness");
+            }
+            if let Some(e) = previous {
+                let gap = e.distance(&p.start);
+                let kink = e.heading_change(&p.start).abs();
+                assert!(
+                    gap < 1e-3,
+                    "{what}: gap of {gap} m before segment {k} ({:?})",
+                    seg.kind
+                );
+                // The heading is continuous everywhere, cusps included: at a cusp the machine
+                // stops and drives the other way facing the same way.
+                assert!(
+                    kink < 1e-3,
+                    "{what}: heading jumps {kink} rad before segment {k} ({:?})",
+                    seg.kind
+                );
+            }
+            previous = Some(p.end());
+        }
+    }
+    assert!(pieces > 0, "{what}: no path");
+    // The continuous-curvature machine: curvature continuous from piece to piece, outside cusps.
+    if let Some(rate) = plan.options.curvature_rate {
+        let all: Vec<_> = plan
+            .path
+            .segments
+            .iter()
+            .flat_map(|s| s.pieces.iter())
+            .collect();
+        for w in all.windows(2) {
+            if w[0].gear != w[1].gear {
+                continue;
+            }
+            let jump = (w[0].curvature_at(w[0].length) - w[1].curvature).abs();
+            // Swaths and headland passes meet turns at zero curvature: every turn starts
+            // and ends straight.
+            assert!(jump < 1e-6, "{what}: curvature jumps {jump} (rate {rate})");
+        }
+    }
+}
+
+fn check_samples(plan: &Plan, what: &str) {
+    let spacing = plan.options.sample_spacing;
+    let s = sample(&plan.path, spacing, &plan.options.vehicle());
+    assert!(s.len() > 1, "{what}: no samples");
+    for i in 1..s.len() {
+        let step = (s.x[i] - s.x[i - 1]).hypot(s.y[i] - s.y[i - 1]);
+        let along = s.distance_m[i] - s.distance_m[i - 1];
+        assert!(
+            along <= spacing + 1e-9 && along >= 0.0,
+            "{what}: samples {along} m apart"
+        );
+        assert!(
+            step <= along + 1e-3,
+            "{what}: a jump of {step} m over {along} m at sample {i} (segment {}, kind {}, reverse {} {})",
+            s.segment[i],
+            s.kind[i],
+            s.reverse[i - 1],
+            s.reverse[i]
+        );
+        assert!(s.time_s[i] >= s.time_s[i - 1], "{what}: time runs back");
+        // The heading changes as the curvature says (a turn of at most 1/r per metre).
+        let dh = ((s.heading_deg[i] - s.heading_deg[i - 1] + 540.0).rem_euclid(360.0) - 180.0)
+            .to_radians()
+            .abs();
+        assert!(
+            dh <= along / plan.options.turn_radius + 1e-3,
+            "{what}: heading jumps {dh} rad over {along} m at sample {i}"
+        );
+        assert!(s.curvature[i].abs() <= 1.0 / plan.options.turn_radius + 1e-6);
+        if s.reverse[i] == 1 {
+            assert!(plan.options.reverse, "{what}: reverses");
+        }
+    }
+    let total: f64 = plan.path.segments.iter().map(|s| s.length()).sum();
+    let last = s.distance_m[s.len() - 1];
+    assert!((last - total).abs() < 1e-6, "{what}: {last} of {total} m");
+}
+
+#[test]
+fn paths_are_drivable_on_every_corpus_field() {
+    let mut rows = Vec::new();
+    for field in valid_fields() {
+        for (machine, options) in machines(&field.options) {
+            let what = format!("{} ({machine})", field.name);
+            let p = plan(&field.text(), &options, &what);
+            check_path(&p, &what);
+            check_samples(&p, &what);
+            let s = &p.summary;
+            rows.push(format!(
+                "| {} | {machine} | {} | {:.0} | {:.0} | {:.0} | {:.3} | {} | {:?} |",
+                field.name,
+                s.turn_count,
+                s.turning_distance_m,
+                s.total_distance_m,
+                s.on_the_spot_distance_m,
+                s.total_distance_m / s.on_the_spot_distance_m,
+                s.turns_outside_field,
+                s.turn_forms
+            ));
+        }
+    }
+    println!("| field | machine | turns | turning m | path m | on the spot m | ratio | outside | forms |");
+    println!("|---|---|---|---|---|---|---|---|---|");
+    for r in rows {
+        println!("{r}");
+    }
+}
+
+#[test]
+fn turns_stay_in_the_field_or_are_reported_with_their_cause() {
+    for field in valid_fields() {
+        for (machine, options) in machines(&field.options) {
+            let what = format!("{} ({machine})", field.name);
+            let p = plan(&field.text(), &options, &what);
+            let outside: Vec<_> = p
+                .path
+                .segments
+                .iter()
+                .filter(|s| s.kind == SegmentKind::Turn)
+                .filter(|s| s.turn.as_ref().is_some_and(|t| !t.inside))
+                .collect();
+            assert_eq!(outside.len(), p.summary.turns_outside_field, "{what}");
+            let warned = p
+                .warnings
+                .iter()
+                .find(|w| w.code == WarningCode::TurnLeavesField);
+            if outside.is_empty() {
+                assert!(warned.is_none(), "{what}: warned of no turn");
+            } else {
+                let w = warned.unwrap_or_else(|| panic!("{what}: turns leave unreported"));
+                assert!(
+                    w.message.contains(&outside.len().to_string()),
+                    "{what}: {}",
+                    w.message
+                );
+                assert!(w.message.contains("beyond the swath ends"), "{what}");
+            }
+            // Where the headland has room for a turn (two passes or more, at least one turning
+            // radius deep) and the machine may reverse, every turn stays in.
+            let depth = options.headland_passes as f64 * options.width;
+            if machine == "reversing"
+                && options.headland_passes >= 2
+                && depth >= options.turn_radius
+            {
+                assert_eq!(
+                    outside.len(),
+                    0,
+                    "{what}: {} turns leave the field ({:?})",
+                    outside.len(),
+                    warned.map(|w| &w.message)
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn the_path_follows_the_route_and_turns_cost_what_they_are() {
+    // The rectangle: the path's working distance is the route's (swaths and headland passes
+    // as laid), every turn joins two swaths of one block, and the total against the same route
+    // with turns on the spot is longer but by no more than the turns.
+    let field = valid_fields()
+        .into_iter()
+        .find(|f| f.name == "rectangle")
+        .expect("the corpus has a rectangle");
+    let p = plan(&field.text(), &field.options, "rectangle");
+    let s = &p.summary;
+    assert!(s.turn_count > 10);
+    assert_eq!(s.turn_forms.values().sum::<usize>(), s.turn_count);
+    assert!(s.total_distance_m > s.on_the_spot_distance_m);
+    assert!(
+        s.total_distance_m - s.on_the_spot_distance_m
+            <= s.turning_distance_m + s.connection_distance_m
+    );
+    let swaths: f64 = p.swaths.swaths.iter().map(|w| w.length()).sum();
+    assert!((s.swath_distance_m - swaths).abs() < 1e-6);
+    // Every turn is at least the straight line between its ends, and at least the turn model's
+    // U-turn for its spacing (πr, or the loop below 2r).
+    let v = p.options.vehicle();
+    for seg in p
+        .path
+        .segments
+        .iter()
+        .filter(|s| s.kind == SegmentKind::Turn)
+    {
+        let (a, b) = (seg.start().unwrap(), seg.end().unwrap());
+        assert!(seg.length() >= a.distance(&b) - 1e-9);
+        assert!(seg.length() >= v.turn_radius * std::f64::consts::PI * 0.999);
+    }
+}
+
+#[test]
+fn samples_go_to_the_output_coordinates() {
+    let field = valid_fields()
+        .into_iter()
+        .find(|f| f.name == "square-1ha")
+        .expect("square");
+    let p = plan(&field.text(), &field.options, "square");
+    let s = p.samples();
+    // Longitude and latitude near the corpus's home (24.05 E, 60.25 N).
+    assert!(s.x.iter().all(|x| (24.0..24.1).contains(x)));
+    assert!(s.y.iter().all(|y| (60.2..60.3).contains(y)));
+    let local = sample(&p.path, p.options.sample_spacing, &Vehicle::default());
+    assert_eq!(local.len(), s.len());
+}
