@@ -96,7 +96,9 @@ fn js_api_gives_the_sampled_path_as_typed_arrays() {
     assert_eq!(segment.length(), n);
     // Longitude and latitude, a metre apart at most, the path's length at the end.
     let d: js_sys::Float64Array = get(&samples, "distance_m").dyn_into().expect("distance");
-    let total = get(&get(&plan, "summary"), "total_distance_m").as_f64().expect("total");
+    let total = get(&get(&plan, "summary"), "total_distance_m")
+        .as_f64()
+        .expect("total");
     assert!((d.get_index(n - 1) - total).abs() < 0.01 * total);
     assert!((24.0..24.1).contains(&x.get_index(0)));
     // Turns carry their form; the GeoJSON text has no samples in it.
