@@ -368,7 +368,7 @@ pub(crate) fn plan_stages(
             .map(|f| format!("{} {}", f.method.as_str(), minutes(f.estimated_time_s)))
             .collect();
         format!(
-            "{} has the lowest estimated operation time ({}; crop left uncovered counted as worked at working speed; within 0.1 % the simpler wins)",
+            "{} has the lowest estimated operation time ({}; crop left uncovered counted as worked at working speed, a connection straight across the crop as worse than any time; within 0.1 % the simpler wins)",
             chosen.method.as_str(),
             times.join(", ")
         )
@@ -443,7 +443,12 @@ impl Worked {
     /// faster for leaving crop standing).
     fn compared_time(&self) -> f64 {
         let m = &self.machine;
-        self.summary.estimated_time_s + self.uncovered_m2() / (m.width * m.working_speed)
+        // A connection straight across the crop damages it: a plan with one loses to any plan
+        // without, whatever the time.
+        let crossings = self.summary.route.straight_connections as f64;
+        self.summary.estimated_time_s
+            + self.uncovered_m2() / (m.width * m.working_speed)
+            + crossings * CROSSING_PENALTY_S
     }
 
     fn figures(&self) -> DecompositionCandidate {
@@ -666,6 +671,10 @@ fn turns_leaving(path: &Path, options: &PlanOptions) -> Option<Warning> {
         ),
     ))
 }
+
+/// What a connection straight across the crop adds to a candidate's time when decompositions
+/// are compared, seconds: more than any field takes to work.
+const CROSSING_PENALTY_S: f64 = 1e7;
 
 /// Seed of the block sequence's ant colony: the same field and options give the same route.
 const ROUTE_SEED: u64 = 0x5eed_f077;

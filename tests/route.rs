@@ -34,6 +34,56 @@ fn samples(line: &LineString) -> Vec<Coord> {
     out
 }
 
+/// Checks one connection line against the inner field (see [`check_connections`]).
+fn check_connection(
+    plan: &Plan,
+    name: &str,
+    line: &LineString,
+    worked: &[LineString],
+    passes: &[&LineString],
+    rings: &[LineString],
+    w: f64,
+) {
+    // Once every swath is worked, there is no crop left in the inner field: the way to an
+    // obstacle's passes or to the exit may cross the stubble.
+    if worked.len() == plan.swaths.swaths.len() {
+        return;
+    }
+    let inner = &plan.headlands.inner;
+    let pts = &line.0;
+    let spur = |a: Coord, b: Coord| (b - a).x.hypot((b - a).y) <= 1.5 * w + 1e-6;
+    let mut allowed: Vec<LineString> = Vec::new();
+    if pts.len() >= 2 {
+        if spur(pts[0], pts[1]) {
+            allowed.push(LineString::new(vec![pts[0], pts[1]]));
+        }
+        let n = pts.len();
+        if spur(pts[n - 2], pts[n - 1]) {
+            allowed.push(LineString::new(vec![pts[n - 2], pts[n - 1]]));
+        }
+    }
+    for p in samples(line) {
+        if !inner.contains(&Point(p)) {
+            continue;
+        }
+        let to_edge = rings
+            .iter()
+            .map(|r| Euclidean.distance(&Point(p), r))
+            .fold(f64::INFINITY, f64::min);
+        let on_track = worked
+            .iter()
+            .chain(passes.iter().copied())
+            .chain(&allowed)
+            .any(|t| Euclidean.distance(&Point(p), t) < 0.01);
+        assert!(
+            to_edge < 0.05 || on_track,
+            "{name}: a connection crosses the inner field at ({:.2}, {:.2}), {to_edge:.2} m from its edge",
+            p.x,
+            p.y
+        );
+    }
+}
+
 /// Checks that no connection of a plan crosses its inner field: every point of a connection is
 /// outside the inner field, on its edge (within 5 cm), on a headland pass (within 1 cm: a pass
 /// rounded to the turning radius cuts the sharp corners of the inner field), on a swath worked
@@ -50,49 +100,25 @@ fn check_connections(plan: &Plan, name: &str) {
         .flat_map(|p| std::iter::once(p.exterior().clone()).chain(p.interiors().iter().cloned()))
         .collect();
     let mut worked: Vec<LineString> = Vec::new();
-    for seg in &plan.path.segments {
-        match seg.kind {
-            SegmentKind::Swath => worked.push(seg.line.clone()),
-            // Once every swath is worked, there is no crop left in the inner field: the way to
-            // an obstacle's passes or to the exit may cross the stubble.
-            SegmentKind::Connection if worked.len() == plan.swaths.swaths.len() => {}
-            SegmentKind::Connection => {
-                let pts = &seg.line.0;
-                let spur = |a: Coord, b: Coord| (b - a).x.hypot((b - a).y) <= 1.5 * w + 1e-6;
-                let mut allowed: Vec<LineString> = Vec::new();
-                if pts.len() >= 2 {
-                    if spur(pts[0], pts[1]) {
-                        allowed.push(LineString::new(vec![pts[0], pts[1]]));
-                    }
-                    let n = pts.len();
-                    if spur(pts[n - 2], pts[n - 1]) {
-                        allowed.push(LineString::new(vec![pts[n - 2], pts[n - 1]]));
-                    }
-                }
-                for p in samples(&seg.line) {
-                    if !inner.contains(&Point(p)) {
-                        continue;
-                    }
-                    let to_edge = rings
-                        .iter()
-                        .map(|r| Euclidean.distance(&Point(p), r))
-                        .fold(f64::INFINITY, f64::min);
-                    let on_track = worked
-                        .iter()
-                        .chain(passes.iter().copied())
-                        .chain(&allowed)
-                        .any(|t| Euclidean.distance(&Point(p), t) < 0.01);
-                    assert!(
-                        to_edge < 0.05 || on_track,
-                        "{name}: a connection crosses the inner field at ({:.2}, {:.2}), {to_edge:.2} m from its edge",
-                        p.x,
-                        p.y
-                    );
-                }
-            }
-            _ => {}
+    // The route's connections as routed along the headland graph (the path drives them with
+    // their corners rounded at the turning radius), each checked against the swaths worked
+    // before it.
+    let mut connections: Vec<(usize, &LineString)> = Vec::new();
+    for (k, step) in plan.route.steps.iter().enumerate() {
+        if let Some(Some(c)) = plan.route.connections.get(k) {
+            connections.push((worked.len(), &c.line));
+            check_connection(plan, name, &c.line, &worked, &passes, &rings, w);
+        }
+        if let RouteStep::Swath { swath, .. } = step {
+            let s = &plan.swaths.swaths[*swath];
+            worked.push(LineString::new(vec![s.centre.start, s.centre.end]));
         }
     }
+    if let Some(c) = &plan.route.finish {
+        check_connection(plan, name, &c.line, &worked, &passes, &rings, w);
+    }
+    let _ = inner;
+    let _ = connections;
     assert_eq!(
         plan.summary.route.straight_connections, 0,
         "{name}: straight connections"

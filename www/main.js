@@ -609,6 +609,22 @@ function renderSummary(s, options, callMs) {
     ["Headland passes", s.headland_pass_count, { key: "headland_pass_count" }],
     ["Working distance", km(s.working_distance_m), { key: "working_distance_m" }],
     ["Turning distance", km(s.turning_distance_m), { key: "turning_distance_m" }],
+    [
+      "Turn forms",
+      Object.entries(s.turn_forms ?? {})
+        .map(([form, n]) => `${n} ${form}`)
+        .join(", ") || "none",
+      { key: "turn_forms", title: "The drivable turns between swaths, by form" },
+    ],
+    ...(num(s.turns_outside_field) > 0
+      ? [
+          [
+            "Turns outside the field",
+            s.turns_outside_field,
+            { key: "turns_outside_field", title: "No turn the machine can drive fits the headland there (see the warnings)" },
+          ],
+        ]
+      : []),
     ["Connections", km(s.connection_distance_m), { key: "connection_distance_m" }],
     ["Total distance", km(s.total_distance_m), { key: "total_distance_m", cls: "total" }],
     ["Field area", ha(s.field_area_m2), { key: "field_area_m2" }],
