@@ -50,6 +50,10 @@ fn path_building(c: &mut Criterion) {
                 group.bench_function(format!("{}/sample-0.5m", field.name), |b| {
                     b.iter(|| sample(black_box(&plan.path), 0.5, &vehicle))
                 });
+                // With the positions converted to longitude and latitude, as the JS API gives them.
+                group.bench_function(format!("{}/samples-lon-lat", field.name), |b| {
+                    b.iter(|| black_box(&plan).samples())
+                });
             }
         }
     }

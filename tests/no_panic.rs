@@ -53,6 +53,7 @@ fn options() -> impl Strategy<Value = PlanOptions> {
             0usize..4,
             prop::option::of((0usize..6, -20.0..20.0f64)),
         ),
+        (any::<bool>(), prop::option::of(0.001..5.0f64)),
     )
         .prop_map(
             |(
@@ -64,7 +65,10 @@ fn options() -> impl Strategy<Value = PlanOptions> {
                 (needed, first),
                 obstacle_threshold,
                 (objective, rule, reference),
+                (reverse, curvature_rate),
             )| PlanOptions {
+                reverse,
+                curvature_rate,
                 objective: [
                     ObjectiveKind::Time,
                     ObjectiveKind::SwathCount,

@@ -116,6 +116,8 @@ pub fn follow(points: &[Coord], v: &Vehicle) -> Vec<Segment> {
                     position = f.end();
                     out.push(f);
                 }
+                // A machine that turns on the spot pivots at the corner.
+                position.heading = edges[k].heading;
                 a = k;
                 a_from = t + tangent;
                 j = k + 1;
@@ -170,6 +172,7 @@ pub fn follow(points: &[Coord], v: &Vehicle) -> Vec<Segment> {
                 position = seg.end();
                 out.push(seg);
             }
+            position.heading = edges[m].heading;
             a = m;
             a_from = into;
             j = m + 1;

@@ -99,12 +99,23 @@ pub fn sample(path: &Path, spacing: f64, v: &Vehicle) -> Samples {
         for piece in &seg.pieces {
             let n = ((piece.length / spacing).ceil() as usize).max(1);
             let first = usize::from(!out.is_empty());
+            // Lines (most of a path: the swaths) step along without trigonometry.
+            let straight = piece.curvature == 0.0 && piece.sharpness == 0.0;
+            let g = piece.gear.sign();
+            let (dy, dx) = piece.start.heading.sin_cos();
+            let line_heading = compass_deg(piece.start.heading);
             for i in first..=n {
                 let s = piece.length * i as f64 / n as f64;
-                let p = piece.pose_at(s);
-                out.x.push(p.x);
-                out.y.push(p.y);
-                out.heading_deg.push(compass_deg(p.heading));
+                if straight {
+                    out.x.push(piece.start.x + g * dx * s);
+                    out.y.push(piece.start.y + g * dy * s);
+                    out.heading_deg.push(line_heading);
+                } else {
+                    let p = piece.pose_at(s);
+                    out.x.push(p.x);
+                    out.y.push(p.y);
+                    out.heading_deg.push(compass_deg(p.heading));
+                }
                 out.curvature.push(piece.curvature_at(s));
                 out.distance_m.push(distance + s);
                 out.time_s.push(time + s / speed);

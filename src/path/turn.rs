@@ -42,6 +42,9 @@ use std::f64::consts::FRAC_PI_2;
 /// starting again take a few seconds.
 pub const CUSP_PENALTY_M: f64 = 5.0;
 
+/// Turning radii below this (metres) are a machine that turns on the spot.
+pub const MIN_TURN_RADIUS_M: f64 = 1e-3;
+
 /// The machine as the path sees it.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Vehicle {
@@ -83,6 +86,9 @@ pub enum TurnForm {
     ContinuousCurvature(&'static str),
     /// The three-point (fishtail) turn: forward, straight back, forward.
     ThreePoint,
+    /// A machine that turns on the spot (no turning radius): it pivots, drives straight to
+    /// the next pose and pivots again.
+    OnTheSpot,
     /// Nothing to turn: the poses meet.
     None,
 }
@@ -98,6 +104,7 @@ impl TurnForm {
             TurnForm::ContinuousCurvature(_) => "cc-u-turn",
             TurnForm::ReedsShepp(_) => "reeds-shepp",
             TurnForm::ThreePoint => "three-point",
+            TurnForm::OnTheSpot => "on-the-spot",
             TurnForm::None => "none",
         }
     }
@@ -107,7 +114,7 @@ impl TurnForm {
         match self {
             TurnForm::Dubins(w) | TurnForm::ContinuousCurvature(w) => (*w).to_string(),
             TurnForm::ReedsShepp(w) => w.clone(),
-            TurnForm::ThreePoint | TurnForm::None => String::new(),
+            TurnForm::ThreePoint | TurnForm::OnTheSpot | TurnForm::None => String::new(),
         }
     }
 }
@@ -172,6 +179,13 @@ impl Vehicle {
                 segments: Vec::new(),
                 inside: true,
             }];
+        }
+        if !(r > MIN_TURN_RADIUS_M) {
+            // It turns on the spot: pivot, straight, pivot (the heading turns standing).
+            let mut t = straight(from, to);
+            t.form = TurnForm::OnTheSpot;
+            t.inside = true;
+            return vec![t];
         }
         if let Some(cc) = self.cc() {
             for p in cc_dubins_all(from, to, &cc) {
@@ -258,6 +272,9 @@ impl Vehicle {
     /// cannot be rounded (a deflection of π or more).
     pub fn tangent_length(&self, deflection: f64) -> f64 {
         let d = deflection.abs();
+        if !(self.turn_radius > MIN_TURN_RADIUS_M) {
+            return 0.0;
+        }
         if d >= std::f64::consts::PI - 1e-9 {
             return f64::INFINITY;
         }
@@ -281,6 +298,10 @@ impl Vehicle {
     /// The rounding of a corner of `deflection` radians (positive to the left) from `start`:
     /// an arc of the turning radius, or a continuous-curvature turn.
     pub fn fillet(&self, start: Pose, deflection: f64) -> Vec<Segment> {
+        if !(self.turn_radius > MIN_TURN_RADIUS_M) {
+            // Pivots standing: nothing to drive.
+            return Vec::new();
+        }
         match self.cc() {
             Some(cc) => cc_turn(start, deflection, &cc),
             None => vec![Segment::arc(
