@@ -86,6 +86,31 @@ test("options change the plan", () => {
   assert.notEqual(c.summary.swath_count, a.summary.swath_count);
 });
 
+test("the path comes as drivable turns and as typed arrays of samples", () => {
+  const field = readField("rectangle.geojson");
+  const plan = furrow.plan(field, { width: 6, headlandPasses: 2, turnRadius: 8, reverse: true });
+  const s = plan.samples;
+  assert.ok(s.x instanceof Float64Array && s.heading_deg instanceof Float64Array);
+  assert.ok(s.kind instanceof Uint8Array && s.segment instanceof Uint32Array);
+  assert.ok(s.x.length > 10000);
+  for (const key of ["y", "heading_deg", "curvature", "distance_m", "time_s", "kind", "reverse", "working", "segment"]) {
+    assert.equal(s[key].length, s.x.length, key);
+  }
+  // Half a metre apart at most, curvature within 1/r, the path's length at the end.
+  for (let i = 1; i < s.x.length; i++) {
+    assert.ok(s.distance_m[i] - s.distance_m[i - 1] <= 0.5 + 1e-9);
+    assert.ok(Math.abs(s.curvature[i]) <= 1 / 8 + 1e-6);
+  }
+  assert.ok(Math.abs(s.distance_m[s.x.length - 1] - plan.summary.total_distance_m) < 1);
+  const turns = plan.features.filter((f) => f.properties.kind === "turn");
+  assert.ok(turns.length > 10);
+  for (const t of turns) {
+    assert.ok(t.properties.form, "a turn has its form");
+    assert.equal(t.properties.heading_deg.length, t.geometry.coordinates.length);
+  }
+  assert.equal(plan.summary.turns_outside_field, 0);
+});
+
 test("invalid inputs throw a FurrowError with a code", () => {
   const expected = {
     "hole-crossing-boundary.geojson": "hole_crossing_boundary",

@@ -160,6 +160,11 @@ pub fn cusps(segments: &[Segment]) -> usize {
 }
 
 impl Vehicle {
+    /// Whether it turns on the spot: a turning radius of (nearly) nothing.
+    pub fn pivots(&self) -> bool {
+        self.turn_radius.is_nan() || self.turn_radius <= MIN_TURN_RADIUS_M
+    }
+
     /// The continuous-curvature settings, if the vehicle has a curvature rate.
     fn cc(&self) -> Option<CcSettings> {
         self.curvature_rate.map(|rate| CcSettings {
@@ -180,7 +185,7 @@ impl Vehicle {
                 inside: true,
             }];
         }
-        if !(r > MIN_TURN_RADIUS_M) {
+        if self.pivots() {
             // It turns on the spot: pivot, straight, pivot (the heading turns standing).
             let mut t = straight(from, to);
             t.form = TurnForm::OnTheSpot;
@@ -272,7 +277,7 @@ impl Vehicle {
     /// cannot be rounded (a deflection of π or more).
     pub fn tangent_length(&self, deflection: f64) -> f64 {
         let d = deflection.abs();
-        if !(self.turn_radius > MIN_TURN_RADIUS_M) {
+        if self.pivots() {
             return 0.0;
         }
         if d >= std::f64::consts::PI - 1e-9 {
@@ -298,7 +303,7 @@ impl Vehicle {
     /// The rounding of a corner of `deflection` radians (positive to the left) from `start`:
     /// an arc of the turning radius, or a continuous-curvature turn.
     pub fn fillet(&self, start: Pose, deflection: f64) -> Vec<Segment> {
-        if !(self.turn_radius > MIN_TURN_RADIUS_M) {
+        if self.pivots() {
             // Pivots standing: nothing to drive.
             return Vec::new();
         }
