@@ -732,3 +732,63 @@ test("viewer: opens field files; errors and warnings in words beside the feature
     assert.ok(await page.isEnabled("#suggested"));
   });
 });
+
+test("viewer: plans in a worker; rapid edits on the large field keep the page responsive, newest wins", { timeout: TIMEOUT }, async () => {
+  await withViewer({ viewport: { width: 1280, height: 800 }, deviceScaleFactor: 1 }, async (page, base) => {
+    await page.goto(`${base}#large-250ha-10-obstacles`);
+    await page.waitForFunction(() => window.furrow.field?.features?.[0]?.properties?.name === "large-250ha-10-obstacles");
+    await ready(page);
+    // Every drawn plan is of a newer edit than the one drawn before it.
+    await page.evaluate(() => {
+      window.__drawn = [];
+      new MutationObserver(() => window.__drawn.push(Number(document.body.dataset.planSeq))).observe(document.body, {
+        attributes: true,
+        attributeFilter: ["data-plan-seq"],
+      });
+    });
+    // Twenty edits 25 ms apart (faster than the field plans), frames timed meanwhile.
+    const frames = await page.evaluate(async () => {
+      const gaps = [];
+      let last = performance.now();
+      let on = true;
+      const tick = (t) => {
+        gaps.push(t - last);
+        last = t;
+        if (on) requestAnimationFrame(tick);
+      };
+      requestAnimationFrame(tick);
+      const width = document.getElementById("width");
+      for (let i = 0; i < 20; i++) {
+        width.value = String(20 + (i % 5));
+        width.dispatchEvent(new Event("input", { bubbles: true }));
+        await new Promise((r) => setTimeout(r, 25));
+      }
+      await new Promise((r) => {
+        const check = () => (document.body.dataset.planState === "ready" ? r() : setTimeout(check, 10));
+        check();
+      });
+      on = false;
+      gaps.sort((a, b) => a - b);
+      return { count: gaps.length, median: gaps[gaps.length >> 1], max: gaps[gaps.length - 1] };
+    });
+    const replans = await page.evaluate(() => window.furrow.replans);
+    const drawn = await page.evaluate(() => window.__drawn);
+    console.log(`large field, 20 edits 25 ms apart: ${drawn.length} plans drawn, frames median ${frames.median.toFixed(1)} ms, max ${frames.max.toFixed(1)} ms over ${frames.count}`);
+    assert.equal(replans.drawn, replans.made, "the newest edit's plan is the one shown");
+    for (let i = 1; i < drawn.length; i++) assert.ok(drawn[i] > drawn[i - 1], `plan ${drawn[i]} drawn after ${drawn[i - 1]}`);
+    assert.ok(drawn.length < 20, "superseded edits were not all planned");
+    // The last edit set the width to 24 m: the plan drawn is for that width.
+    assert.equal(await page.evaluate(() => window.furrow.options.width), 24);
+    const swaths = await page.evaluate(() => window.furrow.plan.summary.swath_count);
+    const direct = await page.evaluate(async () => {
+      const m = await import("./pkg/furrow.js");
+      await m.default();
+      return m.plan(window.furrow.field, window.furrow.options).summary.swath_count;
+    });
+    assert.equal(swaths, direct);
+    // The page kept drawing frames while the worker planned (planning the field in the page
+    // takes a few hundred milliseconds in wasm; drawing a plan takes tens).
+    assert.equal((await dataset(page)).planner, "worker");
+    assert.ok(frames.max < 250, `a frame took ${frames.max} ms`);
+  });
+});

@@ -3,8 +3,12 @@
 // planner says (an error, or warnings) is shown in words on the map beside the feature it
 // concerns (notes.js), and listed in the panel.
 //
-// State for tests and debugging: body[data-plan-state] = loading | ready | error, and after each
-// plan body[data-swath-count] and body[data-plan-ms]; window.furrow holds the last plan or error,
+// The planner runs in a Web Worker (planner.js): the newest edit plans next, older results are
+// never drawn over newer ones.
+//
+// State for tests and debugging: body[data-plan-state] = loading | planning | ready | error
+// (planning: the drawn plan is not that of the newest edit yet), and after each plan
+// body[data-swath-count], body[data-plan-ms] and body[data-plan-seq] (which edit it is of); window.furrow holds the last plan or error,
 // and window.furrow.loadField(geojsonTextOrObject, name) plans a field given by the page;
 // window.furrow.view.drawn says what the last frame drew (the obstacle class labels among it).
 import { ERROR_HINTS, MapNotes, featureLabel, sentence } from "./notes.js";
@@ -82,11 +86,17 @@ const state = {
   error: null, // the last error, as { code, message, ... }
   errorHighlight: [], // the outline the error concerns, for the view
   loadToken: 0,
+  replanSeq: 0, // replan calls made
+  drawnSeq: 0, // the newest replan call whose result is shown
 };
 
 window.furrow = {
   get plan() {
     return state.plan;
+  },
+  /** Replan calls made, and the newest whose result is drawn. */
+  get replans() {
+    return { made: state.replanSeq, drawn: state.drawnSeq };
   },
   get error() {
     return state.error;
@@ -112,7 +122,8 @@ start();
 
 async function start() {
   try {
-    const [{ version }, fields] = await Promise.all([initPlanner(), fetchJson("fields/index.json")]);
+    const [{ version, worker }, fields] = await Promise.all([initPlanner(), fetchJson("fields/index.json")]);
+    document.body.dataset.planner = worker ? "worker" : "page";
     ui.version.textContent = `v${version}`;
     if (!Array.isArray(fields) || fields.length === 0) throw new Error("the list of example fields is empty");
     state.fields = fields;
@@ -409,24 +420,38 @@ function showMoreState() {
 }
 
 /**
- * Plans the current field with the current inputs and shows the result; returns
- * `{ plan, error }`.
+ * Plans the current field with the current inputs (in the planner's worker) and shows the result;
+ * resolves to `{ plan, error }` as shown once this call's plan (or a newer one) is drawn. Calls
+ * made while one plans replace each other: only the newest runs next, and a result older than
+ * the one drawn is never drawn.
  */
-function replan() {
+async function replan() {
   showMoreState();
   if (state.source == null) return { plan: null, error: null };
-  const fit = state.fitPending;
-  state.fitPending = false;
+  const seq = ++state.replanSeq;
   const { options, problems } = readOptions();
   markInvalid(problems.map((p) => p.id));
   if (problems.length) {
+    state.drawnSeq = seq;
     showPlanError({ code: "invalid_option", message: problems.map((p) => p.message).join(" ") }, { local: true });
-  } else {
-    const result = runPlan(state.source, options);
-    if (result.error) showPlanError(result.error);
-    else showPlan(result.plan, options, result.ms);
+    return { plan: state.plan, error: state.error };
   }
+  setPlanState("planning");
+  const source = state.source;
+  const result = await runPlan(source, options);
+  if (result.stale || seq <= state.drawnSeq || source !== state.source) {
+    // A newer edit (or another field) came first: its plan is drawn instead.
+    return { plan: state.plan, error: state.error };
+  }
+  state.drawnSeq = seq;
+  const fit = state.fitPending;
+  state.fitPending = false;
+  if (result.error) showPlanError(result.error);
+  else showPlan(result.plan, options, result.ms);
   if (fit) view.fit();
+  // Newer edits are on their way: not ready until the newest is drawn.
+  if (seq !== state.replanSeq) setPlanState("planning");
+  document.body.dataset.planSeq = String(seq);
   return { plan: state.plan, error: state.error };
 }
 

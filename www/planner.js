@@ -1,42 +1,108 @@
-// The planner behind one small interface, so that it can move to a Web Worker later: both calls
-// take and return plain data (structured-clonable), never DOM objects or wasm handles.
+// The planner behind one small interface. It runs in a Web Worker (worker.js), so that the page
+// never freezes while a large field plans; where a worker cannot start, it runs in the page.
 //
 //   const { version } = await initPlanner();
-//   const result = runPlan(fieldGeoJson, { width, headlandPasses, turnRadius, bearing, headlandMode, ... });
-//   result.plan   (a GeoJSON FeatureCollection with summary and warnings), or
-//   result.error  ({ code, message, feature?, ring?, vertex?, coordinate? })
-import init, { plan, version } from "./pkg/furrow.js";
+//   const result = await runPlan(fieldGeoJson, { width, headlandPasses, turnRadius, ... });
+//   result.id     increases with every call: draw a result only if it is newer than the last drawn
+//   result.plan   (a GeoJSON FeatureCollection with summary, warnings and samples), or
+//   result.error  ({ code, message, feature?, ring?, vertex?, coordinate? }), or
+//   result.stale  (true: a newer call came before this one started; it never ran)
+//
+// The newest call wins: while one plan runs, calls wait in a queue of one, and each new call
+// replaces the one waiting (which resolves as stale). Dragging a vertex thus plans the newest
+// shape as soon as the planner is free, never a backlog of old ones.
+import { plainError } from "./errors.js";
 
 let ready = null;
+let worker = null;
+let inPage = null; // the wasm module's plan function, when planning in the page
+let nextId = 0;
+let running = null; // the call the planner is working on
+let waiting = null; // the newest call not yet started
 
-/** Loads and instantiates the wasm module once; resolves to `{ version }`. */
+/** Starts the planner once; resolves to `{ version, worker }` (worker: whether it runs in one). */
 export function initPlanner() {
-  ready ??= init().then(() => ({ version: version() }));
+  ready ??= startWorker().catch(startInPage);
   return ready;
 }
 
-/** Plans a field; never throws. `ms` is the time of the whole call, GeoJSON conversion included. */
-export function runPlan(field, options) {
-  const t0 = performance.now();
-  try {
-    const result = plan(field, options);
-    return { plan: result, ms: performance.now() - t0 };
-  } catch (e) {
-    return { error: plainError(e), ms: performance.now() - t0 };
-  }
+function startWorker() {
+  return new Promise((resolve, reject) => {
+    if (typeof Worker !== "function") return reject(new Error("no Web Workers"));
+    let w;
+    try {
+      w = new Worker(new URL("./worker.js", import.meta.url), { type: "module" });
+    } catch (e) {
+      return reject(e);
+    }
+    const fail = (e) => {
+      w.terminate();
+      reject(e instanceof Error ? e : new Error(String(e?.message ?? e)));
+    };
+    w.onerror = fail;
+    w.onmessage = (event) => {
+      const data = event.data ?? {};
+      if (data.id !== 0) return;
+      if (data.failed) return fail(new Error(data.failed));
+      worker = w;
+      w.onerror = (e) => finish({ id: running?.id, error: { code: "internal", message: String(e?.message ?? e) }, ms: 0 });
+      w.onmessage = (e) => finish(e.data);
+      resolve({ version: data.version, worker: true });
+    };
+  });
 }
 
-/** A FurrowError (or anything thrown) as plain data. */
-function plainError(e) {
-  const out = {
-    code: typeof e?.code === "string" ? e.code : "internal",
-    message: typeof e?.message === "string" && e.message ? e.message : String(e),
-  };
-  for (const key of ["feature", "ring", "vertex"]) {
-    if (Number.isInteger(e?.[key])) out[key] = e[key];
+async function startInPage() {
+  const module = await import("./pkg/furrow.js");
+  await module.default();
+  inPage = module.plan;
+  return { version: module.version(), worker: false };
+}
+
+/** Plans a field (see the module comment); never rejects. */
+export function runPlan(field, options) {
+  return new Promise((resolve) => {
+    const call = { id: ++nextId, field, options, resolve, t0: performance.now() };
+    if (waiting) waiting.resolve({ id: waiting.id, stale: true });
+    waiting = call;
+    initPlanner().then(pump, (e) => {
+      if (waiting === call) waiting = null;
+      resolve({ id: call.id, error: plainError(e), ms: 0 });
+    });
+  });
+}
+
+function pump() {
+  if (running || !waiting) return;
+  running = waiting;
+  waiting = null;
+  if (worker) {
+    try {
+      worker.postMessage({ id: running.id, field: running.field, options: running.options });
+    } catch (e) {
+      // Something in the field or options cannot be cloned.
+      finish({ id: running.id, error: plainError(e), ms: 0 });
+    }
+    return;
   }
-  if (Array.isArray(e?.coordinate) && e.coordinate.length >= 2) {
-    out.coordinate = [Number(e.coordinate[0]), Number(e.coordinate[1])];
+  // In the page: after the current task, so that the caller's promise chain sees the queue.
+  const call = running;
+  setTimeout(() => {
+    const t0 = performance.now();
+    try {
+      finish({ id: call.id, plan: inPage(call.field, call.options), ms: performance.now() - t0 });
+    } catch (e) {
+      finish({ id: call.id, error: plainError(e), ms: performance.now() - t0 });
+    }
+  }, 0);
+}
+
+function finish(data) {
+  const call = running;
+  running = null;
+  if (call) {
+    // `ms` is the whole call as the page sees it: waiting, planning and the copy back.
+    call.resolve({ ...data, id: call.id, ms: performance.now() - call.t0, planMs: data.ms });
   }
-  return out;
+  pump();
 }
