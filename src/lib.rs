@@ -52,6 +52,7 @@ pub mod output;
 pub mod path;
 pub mod plan;
 pub mod prohibited;
+pub mod rng;
 pub mod route;
 pub mod swath;
 pub mod tracks;

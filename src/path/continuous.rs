@@ -800,23 +800,15 @@ mod tests {
     use super::super::curve::wrap;
     use super::*;
 
-    /// splitmix64.
-    struct Rng(u64);
+    use crate::rng::SplitMix64 as Rng;
 
-    impl Rng {
-        fn next_u64(&mut self) -> u64 {
-            self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-            let mut z = self.0;
-            z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-            z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-            z ^ (z >> 31)
-        }
-        fn unit(&mut self) -> f64 {
-            (self.next_u64() >> 11) as f64 / (1u64 << 53) as f64
-        }
-        fn range(&mut self, a: f64, b: f64) -> f64 {
-            a + (b - a) * self.unit()
-        }
+    /// Random poses and machines for the tests.
+    trait Draw {
+        fn pose(&mut self, extent: f64) -> Pose;
+        fn settings(&mut self) -> CcSettings;
+    }
+
+    impl Draw for Rng {
         fn pose(&mut self, extent: f64) -> Pose {
             Pose::new(
                 self.range(-extent, extent),
@@ -956,7 +948,7 @@ mod tests {
 
     #[test]
     fn random_pairs_give_valid_paths_no_shorter_than_dubins() {
-        let mut rng = Rng(0x5EED_CC01);
+        let mut rng = Rng::new(0x5EED_CC01);
         let n = 4000;
         let mut counts = std::collections::BTreeMap::new();
         let mut worst_ratio = 0.0f64;
@@ -1004,7 +996,7 @@ mod tests {
 
     #[test]
     fn converges_to_dubins_as_sharpness_grows() {
-        let mut rng = Rng(0xD0B1_2525);
+        let mut rng = Rng::new(0xD0B1_2525);
         let mut worst = 0.0f64;
         for _ in 0..2000 {
             let r = rng.range(3.0, 15.0);
@@ -1026,7 +1018,7 @@ mod tests {
     #[test]
     fn every_word_appears_and_verifies() {
         let s = CcSettings::from_radius(5.0, 0.3);
-        let mut rng = Rng(77);
+        let mut rng = Rng::new(77);
         let mut seen = std::collections::BTreeSet::new();
         for _ in 0..3000 {
             let from = Pose::new(0.0, 0.0, 0.0);
@@ -1043,7 +1035,7 @@ mod tests {
 
     #[test]
     fn full_turns_end_on_the_predicted_point_of_the_cc_circle() {
-        let mut rng = Rng(3);
+        let mut rng = Rng::new(3);
         for _ in 0..500 {
             let s = rng.settings();
             let Some(g) = s.geometry() else {
@@ -1077,7 +1069,7 @@ mod tests {
 
     #[test]
     fn small_turns_stay_below_full_lock_and_still_end_on_the_circle() {
-        let mut rng = Rng(4);
+        let mut rng = Rng::new(4);
         let mut max_ratio = 0.0f64;
         for i in 0..2000 {
             let s = rng.settings();
@@ -1120,7 +1112,7 @@ mod tests {
 
     #[test]
     fn u_turns_end_exactly_on_the_neighbour_swath() {
-        let mut rng = Rng(11);
+        let mut rng = Rng::new(11);
         for i in 0..3000 {
             let s = rng.settings();
             let r = 1.0 / s.max_curvature;
@@ -1193,7 +1185,7 @@ mod tests {
 
     #[test]
     fn along_range_matches_dense_sampling() {
-        let mut rng = Rng(21);
+        let mut rng = Rng::new(21);
         for _ in 0..300 {
             let s = rng.settings();
             let (from, to) = (rng.pose(30.0), rng.pose(30.0));
@@ -1324,7 +1316,7 @@ mod tests {
 
     #[test]
     fn time_per_shortest_call() {
-        let mut rng = Rng(99);
+        let mut rng = Rng::new(99);
         let cases: Vec<_> = (0..20_000)
             .map(|_| {
                 let e = rng.range(1.0, 80.0);

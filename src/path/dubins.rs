@@ -362,72 +362,9 @@ mod tests {
     use super::*;
     use std::f64::consts::PI;
 
-    /// SplitMix64: a small deterministic generator.
-    struct Rng(u64);
+    use crate::rng::SplitMix64 as Rng;
 
-    impl Rng {
-        fn next(&mut self) -> u64 {
-            self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-            let mut z = self.0;
-            z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-            z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-            z ^ (z >> 31)
-        }
-        fn unit(&mut self) -> f64 {
-            (self.next() >> 11) as f64 / (1u64 << 53) as f64
-        }
-        fn range(&mut self, lo: f64, hi: f64) -> f64 {
-            lo + (hi - lo) * self.unit()
-        }
-    }
-
-    /// A random start, goal and radius: radius 1..15 m, the goal 0..100 m away (half the time
-    /// within four radii, where the three-arc words live), headings not necessarily wrapped.
-    fn case(rng: &mut Rng) -> (Pose, Pose, f64) {
-        let r = rng.range(1.0, 15.0);
-        let from = Pose::new(
-            rng.range(-50.0, 50.0),
-            rng.range(-50.0, 50.0),
-            rng.range(-7.0, 7.0),
-        );
-        let dist = if rng.unit() < 0.5 {
-            rng.range(0.0, 100.0)
-        } else {
-            rng.range(0.0, (4.0 * r).min(100.0))
-        };
-        let dir = rng.range(-PI, PI);
-        let to = Pose::new(
-            from.x + dist * dir.cos(),
-            from.y + dist * dir.sin(),
-            rng.range(-7.0, 7.0),
-        );
-        (from, to, r)
-    }
-
-    /// Drives the segments one after the other, each from where the one before ended.
-    fn drive(from: Pose, segments: &[Segment]) -> Pose {
-        let mut at = from;
-        for s in segments {
-            assert!(
-                s.start.distance(&at) < 1e-9,
-                "{s:?} does not start at {at:?}"
-            );
-            assert!(wrap(s.start.heading - at.heading).abs() < 1e-12);
-            at = Segment { start: at, ..*s }.end();
-        }
-        at
-    }
-
-    fn assert_reaches(end: Pose, to: Pose, what: &dyn std::fmt::Debug) {
-        assert!(
-            end.distance(&to) < 1e-6,
-            "{what:?} ends at {end:?}, not {to:?}"
-        );
-        assert!(
-            wrap(end.heading - to.heading).abs() < 1e-9,
-            "{what:?}: {end:?} vs {to:?}"
-        );
-    }
+    use super::super::testing::{assert_reaches, case, drive};
 
     /// Checks a path's shape and that it is drivable from `from` to `to`.
     fn check_path(p: &DubinsPath, from: Pose, to: Pose) {
@@ -454,7 +391,7 @@ mod tests {
 
     #[test]
     fn every_word_found_reaches_its_goal() {
-        let mut rng = Rng(1);
+        let mut rng = Rng::new(1);
         let mut counts = [0usize; 6];
         for _ in 0..4000 {
             let (from, to, r) = case(&mut rng);
@@ -511,7 +448,7 @@ mod tests {
 
     #[test]
     fn shortest_is_the_first_least_of_all_words() {
-        let mut rng = Rng(2);
+        let mut rng = Rng::new(2);
         for _ in 0..4000 {
             let (from, to, r) = case(&mut rng);
             let all = dubins_all(from, to, r);
@@ -742,7 +679,7 @@ mod tests {
 
     #[test]
     fn brute_force_agrees() {
-        let mut rng = Rng(3);
+        let mut rng = Rng::new(3);
         for _ in 0..300 {
             let (from, to, r) = case(&mut rng);
             let (b, pieces) = brute(from, to, r);
@@ -763,7 +700,7 @@ mod tests {
     #[test]
     fn brute_force_agrees_close_up() {
         // Within four radii, where the three-arc words are shortest.
-        let mut rng = Rng(6);
+        let mut rng = Rng::new(6);
         let mut three_arcs = 0;
         for _ in 0..1000 {
             let r = rng.range(1.0, 15.0);
@@ -797,7 +734,7 @@ mod tests {
     #[test]
     fn no_random_forward_path_is_shorter() {
         // Drive random arcs and lines forward; the Dubins path to where they end is no longer.
-        let mut rng = Rng(4);
+        let mut rng = Rng::new(4);
         let mut equal = 0;
         for _ in 0..5000 {
             let r = rng.range(1.0, 15.0);
@@ -806,10 +743,10 @@ mod tests {
                 rng.range(-50.0, 50.0),
                 rng.range(-PI, PI),
             );
-            let n = 1 + (rng.next() % 4) as usize;
+            let n = 1 + (rng.next_u64() % 4) as usize;
             let mut pieces = Vec::new();
             for _ in 0..n {
-                let s = [1.0, 0.0, -1.0][(rng.next() % 3) as usize];
+                let s = [1.0, 0.0, -1.0][(rng.next_u64() % 3) as usize];
                 let len = if s == 0.0 {
                     rng.range(0.0, 30.0)
                 } else {
@@ -840,7 +777,7 @@ mod tests {
 
     #[test]
     fn timing() {
-        let mut rng = Rng(5);
+        let mut rng = Rng::new(5);
         let cases: Vec<_> = (0..1000).map(|_| case(&mut rng)).collect();
         let start = std::time::Instant::now();
         let mut total = 0.0;

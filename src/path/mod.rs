@@ -22,6 +22,8 @@ pub mod dubins;
 pub mod follow;
 pub mod reeds_shepp;
 pub mod sample;
+#[cfg(test)]
+mod testing;
 pub mod turn;
 
 use crate::geometry::point_segment_distance;

@@ -559,72 +559,9 @@ mod tests {
     use super::super::dubins::dubins_shortest;
     use super::*;
 
-    /// SplitMix64: a small deterministic generator.
-    struct Rng(u64);
+    use crate::rng::SplitMix64 as Rng;
 
-    impl Rng {
-        fn next(&mut self) -> u64 {
-            self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-            let mut z = self.0;
-            z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-            z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-            z ^ (z >> 31)
-        }
-        fn unit(&mut self) -> f64 {
-            (self.next() >> 11) as f64 / (1u64 << 53) as f64
-        }
-        fn range(&mut self, lo: f64, hi: f64) -> f64 {
-            lo + (hi - lo) * self.unit()
-        }
-    }
-
-    /// A random start, goal and radius: radius 1..15 m, the goal 0..100 m away (half the time
-    /// within four radii, where the paths with cusps live), headings not necessarily wrapped.
-    fn case(rng: &mut Rng) -> (Pose, Pose, f64) {
-        let r = rng.range(1.0, 15.0);
-        let from = Pose::new(
-            rng.range(-50.0, 50.0),
-            rng.range(-50.0, 50.0),
-            rng.range(-7.0, 7.0),
-        );
-        let dist = if rng.unit() < 0.5 {
-            rng.range(0.0, 100.0)
-        } else {
-            rng.range(0.0, (4.0 * r).min(100.0))
-        };
-        let dir = rng.range(-PI, PI);
-        let to = Pose::new(
-            from.x + dist * dir.cos(),
-            from.y + dist * dir.sin(),
-            rng.range(-7.0, 7.0),
-        );
-        (from, to, r)
-    }
-
-    /// Drives the segments one after the other, each from where the one before ended.
-    fn drive(from: Pose, segments: &[Segment]) -> Pose {
-        let mut at = from;
-        for s in segments {
-            assert!(
-                s.start.distance(&at) < 1e-9,
-                "{s:?} does not start at {at:?}"
-            );
-            assert!(wrap(s.start.heading - at.heading).abs() < 1e-12);
-            at = Segment { start: at, ..*s }.end();
-        }
-        at
-    }
-
-    fn assert_reaches(end: Pose, to: Pose, what: &dyn std::fmt::Debug) {
-        assert!(
-            end.distance(&to) < 1e-6,
-            "{what:?} ends at {end:?}, not {to:?}"
-        );
-        assert!(
-            wrap(end.heading - to.heading).abs() < 1e-9,
-            "{what:?}: {end:?} vs {to:?}"
-        );
-    }
+    use super::super::testing::{assert_reaches, case, drive};
 
     /// Checks a path's shape and that it is drivable from `from` to `to`.
     fn check_path(p: &RsPath, from: Pose, to: Pose) {
@@ -677,7 +614,7 @@ mod tests {
 
     #[test]
     fn every_candidate_reaches_its_goal() {
-        let mut rng = Rng(11);
+        let mut rng = Rng::new(11);
         let mut hits = [0usize; APPLICATIONS];
         let mut wins = std::collections::HashMap::new();
         for _ in 0..4000 {
@@ -750,7 +687,7 @@ mod tests {
     fn never_longer_than_dubins_either_way() {
         // Forward-only paths are Reeds-Shepp paths, and so are reverse-only ones: driving
         // from `to` to `from` forward, backwards in time.
-        let mut rng = Rng(12);
+        let mut rng = Rng::new(12);
         let mut shorter = 0;
         for _ in 0..4000 {
             let (from, to, r) = case(&mut rng);
@@ -771,7 +708,7 @@ mod tests {
 
     #[test]
     fn symmetric_under_reversal_mirroring_and_moving() {
-        let mut rng = Rng(13);
+        let mut rng = Rng::new(13);
         for _ in 0..3000 {
             let (from, to, r) = case(&mut rng);
             let len = shortest(from, to, r).length();
@@ -800,7 +737,7 @@ mod tests {
 
     #[test]
     fn straight_ahead_and_back() {
-        let mut rng = Rng(14);
+        let mut rng = Rng::new(14);
         for _ in 0..500 {
             let r = rng.range(0.5, 15.0);
             let from = Pose::new(
@@ -1137,7 +1074,7 @@ mod tests {
     /// For each of the 44 formula applications, a goal (normalised) where it alone gives the
     /// shortest path, by more than `margin` over every other application.
     fn sole_winners(margin: f64) -> Vec<Option<(f64, f64, f64)>> {
-        let mut rng = Rng(18);
+        let mut rng = Rng::new(18);
         let mut found = vec![None; APPLICATIONS];
         for _ in 0..300_000 {
             let (x, y, phi) = (
@@ -1183,7 +1120,7 @@ mod tests {
     fn brute_force_finds_nothing_shorter() {
         // Where each formula application alone is shortest, and at random poses: the brute
         // force, which knows nothing of the formulas, finds no shorter path and comes close.
-        let mut rng = Rng(15);
+        let mut rng = Rng::new(15);
         let mut cases = Vec::new();
         for (id, goal) in sole_winners(1e-3).into_iter().enumerate() {
             let Some((x, y, phi)) = goal else {
@@ -1222,7 +1159,7 @@ mod tests {
     fn no_random_path_is_shorter() {
         // Drive random arcs and lines in random gears; the shortest path to where they end is
         // no longer.
-        let mut rng = Rng(16);
+        let mut rng = Rng::new(16);
         let mut equal = 0;
         for _ in 0..10000 {
             let r = rng.range(1.0, 15.0);
@@ -1231,7 +1168,7 @@ mod tests {
                 rng.range(-50.0, 50.0),
                 rng.range(-PI, PI),
             );
-            let n = 1 + (rng.next() % 5) as usize;
+            let n = 1 + (rng.next_u64() % 5) as usize;
             let mut segs: Vec<Segment> = Vec::new();
             let mut at = from;
             for _ in 0..n {
@@ -1240,7 +1177,7 @@ mod tests {
                 } else {
                     Gear::Reverse
                 };
-                let seg = match rng.next() % 4 {
+                let seg = match rng.next_u64() % 4 {
                     0 => Segment::line(at, rng.range(0.0, 4.0 * r), gear),
                     1 => Segment::arc(
                         at,
@@ -1272,7 +1209,7 @@ mod tests {
 
     #[test]
     fn timing() {
-        let mut rng = Rng(17);
+        let mut rng = Rng::new(17);
         let cases: Vec<_> = (0..1000).map(|_| case(&mut rng)).collect();
         let reps = 50;
         let start = std::time::Instant::now();

@@ -56,6 +56,7 @@
 //! [`solve`] takes the exact answer up to [`EXACT_MAX_BLOCKS`] blocks and the heuristic above.
 //! Every solver is deterministic: the same problem and seed give the same sequence.
 
+use crate::rng::SplitMix64 as Rng;
 use std::ops::Range;
 
 /// One way to work a block.
@@ -248,41 +249,6 @@ impl SequenceProblem {
             total += self.finish_cost(way.exit);
         }
         total
-    }
-}
-
-/// A small seeded generator (SplitMix64): deterministic, no dependencies.
-#[derive(Debug, Clone)]
-struct Rng(u64);
-
-impl Rng {
-    fn new(seed: u64) -> Self {
-        Rng(seed)
-    }
-
-    fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-
-    /// Uniform in `[0, 1)`.
-    fn unit(&mut self) -> f64 {
-        (self.next_u64() >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
-    }
-
-    /// Uniform in `0..n` (0 when `n` is 0).
-    fn below(&mut self, n: usize) -> usize {
-        ((u128::from(self.next_u64()) * n as u128) >> 64) as usize
-    }
-
-    fn shuffle<T>(&mut self, items: &mut [T]) {
-        for i in (1..items.len()).rev() {
-            let j = self.below(i + 1);
-            items.swap(i, j);
-        }
     }
 }
 
