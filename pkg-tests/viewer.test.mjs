@@ -792,3 +792,28 @@ test("viewer: plans in a worker; rapid edits on the large field keep the page re
     assert.ok(frames.max < 250, `a frame took ${frames.max} ms`);
   });
 });
+
+test("viewer: swath order and reversing turns are settings", { timeout: TIMEOUT }, async () => {
+  await withViewer({ viewport: { width: 1280, height: 800 }, deviceScaleFactor: 1 }, async (page, base) => {
+    await page.goto(`${base}#rectangle`);
+    await page.waitForFunction(() => window.furrow.field?.features?.[0]?.properties?.name === "rectangle");
+    await ready(page);
+    const forward = await page.evaluate(() => window.furrow.plan.summary);
+    assert.equal(forward.cusp_count, 0);
+    // On a short screen the machine's further settings start folded.
+    const more = page.locator("#more-options");
+    if ((await more.getAttribute("open")) === null) await more.locator("summary").click();
+    await page.selectOption("#reverse", "true");
+    await ready(page);
+    const reversing = await page.evaluate(() => ({ options: window.furrow.options, s: window.furrow.plan.summary }));
+    assert.equal(reversing.options.reverse, true);
+    assert.ok(reversing.s.cusp_count > 0, "turns with cusps");
+    assert.ok(reversing.s.turning_distance_m < forward.turning_distance_m, "reversing turns are shorter");
+    await page.selectOption("#pattern", "boustrophedon");
+    await ready(page);
+    const bous = await page.evaluate(() => window.furrow.plan.summary.route);
+    assert.equal(bous.pattern, "boustrophedon");
+    assert.ok(bous.block_patterns.every((p) => p === "boustrophedon"));
+    assert.match(await page.textContent("#summary"), /Turn forms/);
+  });
+});

@@ -38,8 +38,11 @@ const OPTION_INPUTS = [
   "objective",
   "search",
   "decomposition",
+  "pattern",
+  "reverse",
 ];
-const CHOICES = new Set(["headlandMode", "headlandOrder", "objective", "search", "decomposition"]); // <select>s: their value is the option
+const CHOICES = new Set(["headlandMode", "headlandOrder", "objective", "search", "decomposition", "pattern", "reverse"]); // <select>s: their value is the option
+const BOOLEANS = new Set(["reverse"]); // <select>s of "true" and "false"
 const OPTIONAL = new Set(["bearing", "obstacleThreshold"]); // empty: null, the planner's default
 const OPENED = ":opened"; // value of the field picker's entry for an opened file
 const MAX_FILE_BYTES = 64 * 1024 * 1024; // the planner refuses more than 32 MB anyway
@@ -368,7 +371,7 @@ function readOptions() {
   };
   for (const [id, input] of Object.entries(ui.inputs)) {
     if (CHOICES.has(id)) {
-      options[id] = input.value;
+      options[id] = BOOLEANS.has(id) ? input.value === "true" : input.value;
       continue;
     }
     const text = input.value.trim();
