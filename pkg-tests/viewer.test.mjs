@@ -817,3 +817,48 @@ test("viewer: swath order and reversing turns are settings", { timeout: TIMEOUT 
     assert.match(await page.textContent("#summary"), /Turn forms/);
   });
 });
+
+test("viewer: with the server stopped, a reload still opens and plans (service worker)", { timeout: TIMEOUT }, async () => {
+  const server = await startServer(SITE, 0);
+  let browser;
+  let stopped = false;
+  try {
+    browser = await launchChromium();
+    const context = await browser.newContext({ viewport: { width: 1280, height: 800 } });
+    const page = await context.newPage();
+    const base = `http://127.0.0.1:${server.address().port}/`;
+    await page.goto(`${base}#rectangle`);
+    await ready(page);
+    await page.waitForSelector("body[data-offline=ready]", { timeout: 20_000 });
+    const online = await page.evaluate(() => window.furrow.plan.summary.swath_count);
+    // Stop the server: nothing answers on its port any more.
+    server.closeAllConnections?.();
+    await new Promise((ok) => server.close(ok));
+    stopped = true;
+    const down = await page.evaluate((u) => fetch(u, { cache: "no-store", mode: "no-cors" }).then(() => "up", () => "down"), `${base}nothing-${Date.now()}`);
+    assert.equal(down, "down", "the server is stopped");
+    await page.reload();
+    await ready(page);
+    assert.equal(await page.evaluate(() => window.furrow.plan.summary.swath_count), online);
+    assert.equal((await dataset(page)).planner, "worker", "the planner's worker starts offline too");
+    // And it plans again on an edit.
+    const passes = Number(await page.inputValue("#headlandPasses"));
+    await setInput(page, "headlandPasses", passes + 1);
+    await ready(page);
+    const fieldPasses = await page.evaluate(() =>
+      Math.max(
+        ...window.furrow.plan.features
+          .filter((f) => f.properties.kind === "headland" && f.properties.around === "field")
+          .map((f) => f.properties.pass),
+      ),
+    );
+    assert.equal(fieldPasses, passes + 1);
+    // Another bundled field opens from the cache.
+    await page.selectOption("#field", "h-shape");
+    await page.waitForFunction(() => window.furrow.field?.features?.[0]?.properties?.name === "h-shape");
+    await ready(page);
+  } finally {
+    await browser?.close();
+    if (!stopped) await new Promise((ok) => server.close(ok));
+  }
+});

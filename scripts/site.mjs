@@ -36,4 +36,17 @@ for (const f of await readdir("tests/fields")) {
   }
 }
 await writeFile(join(out, "fields", "index.json"), JSON.stringify(fields, null, 1) + "\n");
-console.log(`site: ${out} with ${fields.length} fields`);
+
+// What the service worker (sw.js) caches for offline use: every file of the site.
+const files = [];
+async function walk(dir, prefix) {
+  for (const entry of await readdir(dir, { withFileTypes: true })) {
+    const path = prefix ? `${prefix}/${entry.name}` : entry.name;
+    if (entry.isDirectory()) await walk(join(dir, entry.name), path);
+    else if (path !== "sw.js" && path !== "precache.json" && !path.endsWith(".d.ts") && !path.endsWith(".md")) files.push(path);
+  }
+}
+await walk(out, "");
+files.sort();
+await writeFile(join(out, "precache.json"), JSON.stringify({ files }, null, 1) + "\n");
+console.log(`site: ${out} with ${fields.length} fields, ${files.length} files for offline use`);

@@ -122,6 +122,19 @@ window.furrow = {
 setPlanState("loading");
 bindControls();
 start();
+registerOffline();
+
+/** The service worker (sw.js) that lets the page open and plan with no network. */
+function registerOffline() {
+  if (!("serviceWorker" in navigator) || !window.isSecureContext) return;
+  navigator.serviceWorker
+    .register("sw.js")
+    .then(() => navigator.serviceWorker.ready)
+    .then(() => {
+      document.body.dataset.offline = "ready";
+    })
+    .catch((e) => console.warn("furrow viewer: no offline copy", e));
+}
 
 async function start() {
   try {
