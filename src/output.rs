@@ -10,8 +10,12 @@
 //! | `obstacle_group` | Polygon | `index`, `class` (`C`), `members` (indices of the obstacles merged) |
 //! | `swath` | LineString | `sequence`, `index`, `block`, `line`, `length_m`, `bearing_deg` (driving direction), `lifted` (if any: `[from, to]` metres from the swath's first point where the implement is lifted over a class A obstacle), `overlap_m` (on a line working a leftover strip: its overlap with the neighbouring strip), `region` (in a prohibited region worked in its own direction) |
 //! | `headland` | LineString | `sequence`, `pass` (1 = nearest the boundary or obstacle), `around` (`field` or `obstacle`), `closed`, `length_m` |
-//! | `turn` | LineString | `sequence`, `block`, `length_m` |
+//! | `turn` | LineString | `sequence`, `block`, `length_m`, `form`, `word`, `inside` |
 //! | `connection` | LineString | `sequence`, `length_m` |
+//!
+//! Every drivable feature also has `distance_m`, `time_s` (from the start of the path),
+//! `duration_s`, `working`, and at each point of its line `heading_deg` and `curvature` (and
+//! `reverse` where the machine reverses on it).
 //!
 //! Drivable features (`swath`, `headland`, `turn`, `connection`) carry `sequence`, their position
 //! in driving order from 0, and follow each other in that order in `features`; each starts where
@@ -132,7 +136,8 @@ pub struct Properties {
     /// Whether the implement works along a drivable feature.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub working: Option<bool>,
-    /// A turn's form: `u-turn`, `loop`, `three-point`, `reeds-shepp`, `cc-u-turn`, `cc-loop`.
+    /// A turn's form: `u-turn`, `loop`, `three-point`, `reeds-shepp`, `cc-u-turn`, `cc-loop`,
+    /// `on-the-spot`.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub form: Option<&'static str>,
     /// A turn's word (`LSL`, `L+R-L+` …), where it has one.
