@@ -862,3 +862,32 @@ test("viewer: with the server stopped, a reload still opens and plans (service w
     if (!stopped) await new Promise((ok) => server.close(ok));
   }
 });
+
+test("viewer: a night theme, kept across visits", { timeout: TIMEOUT }, async () => {
+  mkdirSync(SHOTS, { recursive: true });
+  await withViewer({ viewport: { width: 1280, height: 800 }, deviceScaleFactor: 1 }, async (page, base) => {
+    await page.goto(`${base}#h-shape`);
+    await page.waitForFunction(() => window.furrow.field?.features?.[0]?.properties?.name === "h-shape");
+    await ready(page);
+    const dayField = await countColour(page, "--map-field", 6);
+    assert.ok(dayField > 1000, "the field drawn in the day colour");
+    await page.screenshot({ path: join(SHOTS, "viewer-day.png") });
+    await page.click("#theme");
+    assert.equal(await page.evaluate(() => document.documentElement.dataset.theme), "night");
+    assert.equal(await page.getAttribute("#theme", "aria-pressed"), "true");
+    // The map is redrawn in the night colours: the field dark, the plan in its night colours.
+    const nightField = await countColour(page, "--map-field", 6);
+    assert.ok(nightField > 1000, `the field drawn in the night colour (${nightField} pixels)`);
+    for (const kind of ["--swath", "--headland", "--turn"]) {
+      assert.ok((await countColour(page, kind)) > 100, `${kind} in its night colour`);
+    }
+    const bg = await page.evaluate(() => getComputedStyle(document.body).backgroundColor);
+    assert.notEqual(bg, "rgb(238, 240, 234)", "the page is dark");
+    await page.screenshot({ path: join(SHOTS, "viewer-night.png") });
+    await page.reload();
+    await ready(page);
+    assert.equal(await page.evaluate(() => document.documentElement.dataset.theme), "night", "kept after a reload");
+    await page.click("#theme");
+    assert.equal(await page.evaluate(() => document.documentElement.dataset.theme ?? "day"), "day");
+  });
+});

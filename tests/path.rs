@@ -9,7 +9,7 @@ mod common;
 use common::corpus::valid_fields;
 use furrow::path::curve::{Gear, Pose};
 use furrow::path::sample::sample;
-use furrow::path::turn::Vehicle;
+use furrow::path::turn::{Area, Vehicle};
 use furrow::path::SegmentKind;
 use furrow::{plan_geojson, Plan, PlanOptions, WarningCode};
 
@@ -196,6 +196,25 @@ fn turns_stay_in_the_field_or_are_reported_with_their_cause() {
                     w.message
                 );
                 assert!(w.message.contains("beyond the swath ends"), "{what}");
+            }
+            // Connections are joined to the swath ends by turns that stay in the field where one
+            // does: for a machine that may reverse, one always does on the corpus.
+            if machine == "reversing" {
+                let obstacles: Vec<&geo::Polygon> =
+                    p.field.obstacles.iter().map(|o| &o.polygon).collect();
+                let area = Area::new(&p.field.boundary, &obstacles);
+                for c in p
+                    .path
+                    .segments
+                    .iter()
+                    .filter(|s| s.kind == SegmentKind::Connection)
+                {
+                    assert!(
+                        area.contains(&c.pieces),
+                        "{what}: a connection of {:.0} m leaves the field",
+                        c.length()
+                    );
+                }
             }
             // Where the headland has room for a turn (two passes or more, at least one turning
             // radius deep) and the machine may reverse, every turn stays in.

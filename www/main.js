@@ -124,6 +124,31 @@ bindControls();
 start();
 registerOffline();
 
+/** The theme the user chose last (kept in this browser), day by default. */
+function storedTheme() {
+  try {
+    return localStorage.getItem("furrow.theme") === "night" ? "night" : "day";
+  } catch {
+    return "day"; // storage blocked: day
+  }
+}
+
+/** Day or night: the page's colours (style.css) and the map's, which the view re-reads. */
+function setTheme(theme) {
+  const night = theme === "night";
+  if (night) document.documentElement.dataset.theme = "night";
+  else delete document.documentElement.dataset.theme;
+  const button = $("theme");
+  button.setAttribute("aria-pressed", String(night));
+  button.textContent = night ? "Day" : "Night";
+  try {
+    localStorage.setItem("furrow.theme", night ? "night" : "day");
+  } catch {
+    // storage blocked: the theme holds for this visit
+  }
+  view.refreshTheme();
+}
+
 /** The service worker (sw.js) that lets the page open and plan with no network. */
 function registerOffline() {
   if (!("serviceWorker" in navigator) || !window.isSecureContext) return;
@@ -191,6 +216,8 @@ function bindControls() {
     replan();
   });
   $("fit").addEventListener("click", () => view.fit());
+  $("theme").addEventListener("click", () => setTheme(document.documentElement.dataset.theme === "night" ? "day" : "night"));
+  setTheme(storedTheme());
   $("zoom-in").addEventListener("click", () => view.zoomAt(1.5));
   $("zoom-out").addEventListener("click", () => view.zoomAt(1 / 1.5));
   window.addEventListener("hashchange", () => {

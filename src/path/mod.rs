@@ -12,7 +12,7 @@
 //!   the field ([`turn`]: Dubins, Reeds-Shepp, three-point, continuous-curvature); turns that
 //!   cannot stay in are kept, marked and counted;
 //! - a connection follows the route's line along the headland, joined to the poses at either
-//!   end by the vehicle's cheapest turn.
+//!   end by the vehicle's cheapest turn that stays in the field (where one does).
 //!
 //! [`sample`] gives the path as points at a set spacing, for drawing and guidance.
 
@@ -274,14 +274,14 @@ pub fn build_path(
                         segments.push(t);
                     }
                 } else if let Some(c) =
-                    connection(Some(from), Some(start), w.into.as_ref(), vehicle)
+                    connection(Some(from), Some(start), w.into.as_ref(), vehicle, area)
                 {
                     segments.push(c);
                 }
             }
             None => {
                 // From the entrance: along the route's line into the first pose.
-                if let Some(c) = connection(None, Some(start), w.into.as_ref(), vehicle) {
+                if let Some(c) = connection(None, Some(start), w.into.as_ref(), vehicle, area) {
                     segments.push(c);
                 }
             }
@@ -290,7 +290,7 @@ pub fn build_path(
         segments.push(w.segment);
     }
     if let Some(c) = &route.finish {
-        if let Some(f) = connection(previous.map(|p| p.0), None, Some(&c.line), vehicle) {
+        if let Some(f) = connection(previous.map(|p| p.0), None, Some(&c.line), vehicle, area) {
             segments.push(f);
         }
     }
@@ -335,7 +335,16 @@ fn connection(
     to: Option<Pose>,
     line: Option<&LineString>,
     v: &Vehicle,
+    area: Option<&Area>,
 ) -> Option<PathSegment> {
+    // A join between two poses: the cheapest turn that stays in the field where one does.
+    let join = |a: Pose, b: Pose| match area {
+        Some(ar) => v.turn(a, b, ar),
+        None => v.shortest(a, b),
+    };
+    // What a join costs when choosing where to join: leaving the field costs more than any
+    // detour along the line.
+    let join_cost = |t: &turn::Turn| t.cost() + if t.inside || area.is_none() { 0.0 } else { 1e6 };
     let pts: Vec<Coord> = line.map(|l| l.0.clone()).unwrap_or_default();
     let length = polyline_length(&pts);
     let direct = length < DIRECT_CONNECTION_RADII * v.turn_radius;
@@ -344,33 +353,33 @@ fn connection(
             if a.distance(&b) < MIN_CONNECTOR_M && a.heading_change(&b).abs() < 1e-9 {
                 return None;
             }
-            v.shortest(a, b).segments
+            join(a, b).segments
         }
         _ => {
             // Where to leave the line's start and end: the join that costs least over what it
             // saves of the line.
             let half = length / 2.0;
             let start_at = from.map_or(0.0, |a| {
-                best_join(&pts, half, v, |p| v.shortest(a, p).length(), true)
+                best_join(&pts, half, v, |p| join_cost(&join(a, p)), true)
             });
             let end_at = to.map_or(0.0, |b| {
-                best_join(&pts, half, v, |p| v.shortest(p, b).length(), false)
+                best_join(&pts, half, v, |p| join_cost(&join(p, b)), false)
             });
             let middle = cut_polyline(&pts, start_at, length - end_at);
             let mut along = follow(&middle, v);
             if along.is_empty() {
                 match (from, to) {
-                    (Some(a), Some(b)) => along = v.shortest(a, b).segments,
+                    (Some(a), Some(b)) => along = join(a, b).segments,
                     _ => return None,
                 }
             } else {
                 if let (Some(a), Some(m0)) = (from, along.first().map(|s| s.start)) {
-                    let mut pieces = v.shortest(a, m0).segments;
+                    let mut pieces = join(a, m0).segments;
                     pieces.append(&mut along);
                     along = pieces;
                 }
                 if let (Some(b), Some(m1)) = (to, curve::end(&along)) {
-                    along.extend(v.shortest(m1, b).segments);
+                    along.extend(join(m1, b).segments);
                 }
             }
             along
