@@ -85,6 +85,17 @@ async function setInput(page, id, value) {
   await page.fill(`#${id}`, String(value));
 }
 
+/** The outermost field headland pass of the plan shown (headland_pass_count also counts the
+ * passes around obstacles). */
+const fieldPasses = (page) =>
+  page.evaluate(() =>
+    Math.max(
+      ...window.furrow.plan.features
+        .filter((f) => f.properties.kind === "headland" && f.properties.around === "field")
+        .map((f) => f.properties.pass),
+    ),
+  );
+
 /** A fingerprint of the last plan, to tell plans apart. */
 const planKey = (page) =>
   page.evaluate(() => {
@@ -120,14 +131,8 @@ test("viewer: loads, draws, re-plans, switches fields, survives errors", { timeo
     await setInput(page, "headlandPasses", passes + 2);
     await ready(page);
     // (headland_pass_count counts the passes around obstacles too: look at the field's.)
-    const fieldPasses = await page.evaluate(() =>
-      Math.max(
-        ...window.furrow.plan.features
-          .filter((f) => f.properties.kind === "headland" && f.properties.around === "field")
-          .map((f) => f.properties.pass),
-      ),
-    );
-    assert.equal(fieldPasses, passes + 2);
+    const shown = await fieldPasses(page);
+    assert.equal(shown, passes + 2);
     assert.notEqual(await planKey(page), before, "the plan did not change with the headland passes");
 
     // A fixed bearing re-plans along it; empty goes back to automatic.
@@ -845,14 +850,8 @@ test("viewer: with the server stopped, a reload still opens and plans (service w
     const passes = Number(await page.inputValue("#headlandPasses"));
     await setInput(page, "headlandPasses", passes + 1);
     await ready(page);
-    const fieldPasses = await page.evaluate(() =>
-      Math.max(
-        ...window.furrow.plan.features
-          .filter((f) => f.properties.kind === "headland" && f.properties.around === "field")
-          .map((f) => f.properties.pass),
-      ),
-    );
-    assert.equal(fieldPasses, passes + 1);
+    const shown = await fieldPasses(page);
+    assert.equal(shown, passes + 1);
     // Another bundled field opens from the cache.
     await page.selectOption("#field", "h-shape");
     await page.waitForFunction(() => window.furrow.field?.features?.[0]?.properties?.name === "h-shape");

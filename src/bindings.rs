@@ -55,33 +55,23 @@ pub fn plan_js(field: JsValue, options: JsValue) -> Result<JsValue, JsValue> {
     let columns = js_sys::Object::new();
     let put =
         |key: &str, value: JsValue| js_sys::Reflect::set(&columns, &JsValue::from_str(key), &value);
-    put("x", js_sys::Float64Array::from(&samples.x[..]).into())?;
-    put("y", js_sys::Float64Array::from(&samples.y[..]).into())?;
-    put(
-        "heading_deg",
-        js_sys::Float64Array::from(&samples.heading_deg[..]).into(),
-    )?;
-    put(
-        "curvature",
-        js_sys::Float64Array::from(&samples.curvature[..]).into(),
-    )?;
-    put(
-        "distance_m",
-        js_sys::Float64Array::from(&samples.distance_m[..]).into(),
-    )?;
-    put(
-        "time_s",
-        js_sys::Float64Array::from(&samples.time_s[..]).into(),
-    )?;
-    put("kind", js_sys::Uint8Array::from(&samples.kind[..]).into())?;
-    put(
-        "reverse",
-        js_sys::Uint8Array::from(&samples.reverse[..]).into(),
-    )?;
-    put(
-        "working",
-        js_sys::Uint8Array::from(&samples.working[..]).into(),
-    )?;
+    for (key, column) in [
+        ("x", &samples.x),
+        ("y", &samples.y),
+        ("heading_deg", &samples.heading_deg),
+        ("curvature", &samples.curvature),
+        ("distance_m", &samples.distance_m),
+        ("time_s", &samples.time_s),
+    ] {
+        put(key, js_sys::Float64Array::from(&column[..]).into())?;
+    }
+    for (key, column) in [
+        ("kind", &samples.kind),
+        ("reverse", &samples.reverse),
+        ("working", &samples.working),
+    ] {
+        put(key, js_sys::Uint8Array::from(&column[..]).into())?;
+    }
     put(
         "segment",
         js_sys::Uint32Array::from(&samples.segment[..]).into(),

@@ -330,6 +330,11 @@ pub(crate) fn plan_stages(
         objective: objective.as_ref(),
         headlands,
         single,
+        area: {
+            let obstacles: Vec<&geo::Polygon> =
+                field.obstacles.iter().map(|o| &o.polygon).collect();
+            DrivingArea::new(&field.boundary, &obstacles)
+        },
     };
     let mut candidates: Vec<Worked> = Vec::with_capacity(methods.len());
     for &m in &methods {
@@ -428,6 +433,8 @@ struct Prepared<'a> {
     headlands: Headlands,
     /// The swaths at the field's direction, when a single-direction decomposition is planned.
     single: Option<SingleDirection>,
+    /// Where turns must stay (the field less its obstacles): the same for every candidate.
+    area: DrivingArea,
 }
 
 /// A plan from the decomposition on.
@@ -864,14 +871,12 @@ fn work(
             ),
         ));
     }
-    let obstacle_rings: Vec<&geo::Polygon> = field.obstacles.iter().map(|o| &o.polygon).collect();
-    let area = DrivingArea::new(&field.boundary, &obstacle_rings);
     let path = build_path(
         &route,
         &swaths,
         &headlands.passes,
         &options.vehicle(),
-        Some(&area),
+        Some(&prep.area),
     );
     if let Some(w) = turns_leaving(&path, options) {
         warnings.push(w);

@@ -103,10 +103,8 @@ fn check_connections(plan: &Plan, name: &str) {
     // The route's connections as routed along the headland graph (the path drives them with
     // their corners rounded at the turning radius), each checked against the swaths worked
     // before it.
-    let mut connections: Vec<(usize, &LineString)> = Vec::new();
     for (k, step) in plan.route.steps.iter().enumerate() {
         if let Some(Some(c)) = plan.route.connections.get(k) {
-            connections.push((worked.len(), &c.line));
             check_connection(plan, name, &c.line, &worked, &passes, &rings, w);
         }
         if let RouteStep::Swath { swath, .. } = step {
@@ -117,8 +115,6 @@ fn check_connections(plan: &Plan, name: &str) {
     if let Some(c) = &plan.route.finish {
         check_connection(plan, name, &c.line, &worked, &passes, &rings, w);
     }
-    let _ = inner;
-    let _ = connections;
     assert_eq!(
         plan.summary.route.straight_connections, 0,
         "{name}: straight connections"

@@ -18,13 +18,13 @@
 //! // Straight ahead: a line (the two arcs have length zero).
 //! let from = Pose::new(0.0, 0.0, 0.0);
 //! let to = Pose::new(40.0, 0.0, 0.0);
-//! let path = dubins_shortest(from, to, 10.0).unwrap();
+//! let path = dubins_shortest(from, to, 10.0).ok_or("no path")?;
 //! assert_eq!(path.word, DubinsWord::Lsl);
 //! assert!((path.length() - 40.0).abs() < 1e-9);
 //!
 //! // Turning back on the spot, forward only, takes three arcs: 7π/3 radii.
 //! let back = Pose::new(0.0, 0.0, PI);
-//! let path = dubins_shortest(from, back, 1.0).unwrap();
+//! let path = dubins_shortest(from, back, 1.0).ok_or("no path")?;
 //! assert_eq!(path.word, DubinsWord::Rlr);
 //! assert!((path.length() - 7.0 * PI / 3.0).abs() < 1e-9);
 //! let end = path.end(from);
@@ -35,6 +35,7 @@
 //!     let segments = p.segments(from);
 //!     assert_eq!(segments.len(), 3);
 //! }
+//! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
 use super::curve::{wrap, Gear, Pose, Segment};
@@ -298,10 +299,11 @@ fn path(word: DubinsWord, n: [f64; 3], radius: f64) -> Option<DubinsPath> {
 /// // A half turn to the left: the left arc alone.
 /// let from = Pose::new(0.0, 0.0, 0.0);
 /// let to = Pose::new(0.0, 20.0, PI);
-/// let p = dubins_word(from, to, 10.0, DubinsWord::Lsl).unwrap();
+/// let p = dubins_word(from, to, 10.0, DubinsWord::Lsl).ok_or("no LSL path")?;
 /// assert!((p.length() - 10.0 * PI).abs() < 1e-9);
 /// // Three arcs cannot join poses this far apart.
 /// assert!(dubins_word(from, Pose::new(100.0, 0.0, 0.0), 10.0, DubinsWord::Lrl).is_none());
+/// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn dubins_word(from: Pose, to: Pose, radius: f64, word: DubinsWord) -> Option<DubinsPath> {
     let f = Frame::new(from, to, radius)?;
@@ -331,12 +333,13 @@ pub fn dubins_all(from: Pose, to: Pose, radius: f64) -> Vec<DubinsPath> {
 ///
 /// let from = Pose::new(0.0, 0.0, 0.0);
 /// let to = Pose::new(30.0, -12.0, -1.0);
-/// let p = dubins_shortest(from, to, 6.0).unwrap();
+/// let p = dubins_shortest(from, to, 6.0).ok_or("no path")?;
 /// let end = p.end(from);
 /// assert!(end.distance(&to) < 1e-9 && end.heading_change(&to).abs() < 1e-9);
 /// assert!(p.length() >= from.distance(&to));
 /// assert!(dubins_shortest(from, to, 0.0).is_none());
 /// assert!(dubins_shortest(from, Pose::new(f64::NAN, 0.0, 0.0), 6.0).is_none());
+/// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn dubins_shortest(from: Pose, to: Pose, radius: f64) -> Option<DubinsPath> {
     let f = Frame::new(from, to, radius)?;

@@ -24,8 +24,9 @@
 //! let path = follow(&pts, &v);
 //! let expected = 100.0 - 2.0 * 5.0 + 5.0 * std::f64::consts::FRAC_PI_2;
 //! assert!((curve::length(&path) - expected).abs() < 1e-9);
-//! let end = curve::end(&path).unwrap();
+//! let end = curve::end(&path).ok_or("no path")?;
 //! assert!((end.x - 50.0).abs() < 1e-9 && (end.y - 50.0).abs() < 1e-9);
+//! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
 use super::curve::{wrap, Gear, Pose, Segment};

@@ -25,7 +25,7 @@
 //! // Straight back 7 m: one part, in reverse.
 //! let from = Pose::new(0.0, 0.0, 0.0);
 //! let to = Pose::new(-7.0, 0.0, 0.0);
-//! let p = reeds_shepp_shortest(from, to, 5.0).unwrap();
+//! let p = reeds_shepp_shortest(from, to, 5.0).ok_or("no path")?;
 //! assert_eq!(p.word(), "S-");
 //! assert_eq!(p.parts[0].steer, Steer::Straight);
 //! assert_eq!(p.parts[0].gear, Gear::Reverse);
@@ -33,7 +33,7 @@
 //!
 //! // A sideways shift of 2 m with 5 m turns needs cusps; the path ends at the goal.
 //! let to = Pose::new(0.0, 2.0, 0.0);
-//! let p = reeds_shepp_shortest(from, to, 5.0).unwrap();
+//! let p = reeds_shepp_shortest(from, to, 5.0).ok_or("no path")?;
 //! assert!(p.cusps() >= 1);
 //! let end = p.end(from);
 //! assert!(end.distance(&to) < 1e-9 && end.heading_change(&to).abs() < 1e-9);
@@ -43,6 +43,7 @@
 //!     assert!(q.length() >= p.length());
 //!     assert!(q.end(from).distance(&to) < 1e-9);
 //! }
+//! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
 use super::curve::{wrap, Gear, Pose, Segment};
@@ -531,11 +532,12 @@ pub fn reeds_shepp_all(from: Pose, to: Pose, radius: f64) -> Vec<RsPath> {
 /// // A quarter turn to the left is one forward arc.
 /// let from = Pose::new(0.0, 0.0, 0.0);
 /// let to = Pose::new(4.0, 4.0, PI / 2.0);
-/// let p = reeds_shepp_shortest(from, to, 4.0).unwrap();
+/// let p = reeds_shepp_shortest(from, to, 4.0).ok_or("no path")?;
 /// assert_eq!(p.word(), "L+");
 /// assert_eq!(p.cusps(), 0);
 /// assert!((p.length() - 2.0 * PI).abs() < 1e-9);
 /// assert!(reeds_shepp_shortest(from, to, -1.0).is_none());
+/// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn reeds_shepp_shortest(from: Pose, to: Pose, radius: f64) -> Option<RsPath> {
     let (x, y, phi) = normalise(from, to, radius)?;
