@@ -13,95 +13,23 @@
 // another binary.
 import { test } from "node:test";
 import assert from "node:assert/strict";
-import { existsSync, mkdirSync, readdirSync, readFileSync } from "node:fs";
+import { mkdirSync, readdirSync, readFileSync } from "node:fs";
 import { join } from "node:path";
 import { startServer } from "../scripts/serve.mjs";
-import { launchChromium, ROOT, SITE } from "./support.mjs";
-
-const SHOTS = join(ROOT, "target/screenshots");
-const FIELDS = join(ROOT, "tests/fields");
-const INVALID = join(FIELDS, "invalid");
-const TIMEOUT = 60_000;
-
-/** Starts the server and the browser, runs `body(page, base)`, and always closes both. */
-async function withViewer(contextOptions, body) {
-  if (!existsSync(join(SITE, "pkg", "furrow.js")) || !existsSync(join(SITE, "index.html"))) {
-    throw new Error("target/site/pkg or target/site/index.html is missing: run scripts/build.sh first");
-  }
-  const server = await startServer(SITE, 0);
-  let browser;
-  try {
-    browser = await launchChromium();
-    const context = await browser.newContext(contextOptions);
-    const page = await context.newPage();
-    const problems = [];
-    page.on("console", (msg) => {
-      if (msg.type() === "error") problems.push(`console error: ${msg.text()}`);
-    });
-    page.on("pageerror", (e) => problems.push(`page error: ${e.message}`));
-    page.on("requestfailed", (r) => problems.push(`request failed: ${r.url()} ${r.failure()?.errorText}`));
-    page.on("response", (r) => {
-      if (r.status() >= 400) problems.push(`HTTP ${r.status()}: ${r.url()}`);
-    });
-    // Only same-origin requests: no CDN, fonts or other hosts.
-    const base = `http://127.0.0.1:${server.address().port}/`;
-    page.on("request", (r) => {
-      if (!r.url().startsWith(base) && !r.url().startsWith("data:")) problems.push(`foreign request: ${r.url()}`);
-    });
-    await body(page, base);
-    assert.deepEqual(problems, [], "the page logged errors or made bad requests");
-  } finally {
-    await browser?.close();
-    await new Promise((ok) => server.close(ok));
-  }
-}
-
-const ready = (page) => page.waitForSelector("body[data-plan-state=ready]", { timeout: 20_000 });
-const dataset = (page) => page.evaluate(() => ({ ...document.body.dataset }));
-
-/** Number of canvas pixels within `tolerance` of the CSS colour of custom property `name`. */
-function countColour(page, name, tolerance = 40) {
-  return page.evaluate(
-    ([name, tolerance]) => {
-      const probe = document.createElement("span");
-      probe.style.color = `var(${name})`;
-      document.body.append(probe);
-      const [r, g, b] = getComputedStyle(probe).color.match(/\d+(\.\d+)?/g).map(Number);
-      probe.remove();
-      const canvas = document.getElementById("map");
-      const data = canvas.getContext("2d").getImageData(0, 0, canvas.width, canvas.height).data;
-      let n = 0;
-      for (let i = 0; i < data.length; i += 4) {
-        if (Math.abs(data[i] - r) + Math.abs(data[i + 1] - g) + Math.abs(data[i + 2] - b) <= tolerance) n++;
-      }
-      return n;
-    },
-    [name, tolerance],
-  );
-}
-
-/** Sets an input's value as typing would and fires `input`. */
-async function setInput(page, id, value) {
-  await page.fill(`#${id}`, String(value));
-}
-
-/** The outermost field headland pass of the plan shown (headland_pass_count also counts the
- * passes around obstacles). */
-const fieldPasses = (page) =>
-  page.evaluate(() =>
-    Math.max(
-      ...window.furrow.plan.features
-        .filter((f) => f.properties.kind === "headland" && f.properties.around === "field")
-        .map((f) => f.properties.pass),
-    ),
-  );
-
-/** A fingerprint of the last plan, to tell plans apart. */
-const planKey = (page) =>
-  page.evaluate(() => {
-    const p = window.furrow.plan;
-    return p ? JSON.stringify([p.summary.swath_count, p.summary.total_distance_m, p.features.length]) : null;
-  });
+import {
+  FIELDS,
+  INVALID,
+  SHOTS,
+  TIMEOUT,
+  countColour,
+  dataset,
+  fieldPasses,
+  planKey,
+  ready,
+  setInput,
+  withViewer,
+} from "./viewer-support.mjs";
+import { launchChromium, SITE } from "./support.mjs";
 
 test("viewer: loads, draws, re-plans, switches fields, survives errors", { timeout: TIMEOUT }, async () => {
   mkdirSync(SHOTS, { recursive: true });
@@ -630,7 +558,7 @@ test("viewer: opens field files; errors and warnings in words beside the feature
         await page.screenshot({ path: join(SHOTS, "viewer-error.png") });
         // The callout follows the map when it is panned.
         const cx = map.x + map.width / 2;
-        const cy = map.y + map.height - 40;
+        const cy = map.y + map.height - 90; // above the edit bar
         await page.mouse.move(cx, cy);
         await page.mouse.down();
         await page.mouse.move(cx - 90, cy - 30, { steps: 4 });

@@ -11,6 +11,23 @@
 // body[data-swath-count], body[data-plan-ms] and body[data-plan-seq] (which edit it is of); window.furrow holds the last plan or error,
 // and window.furrow.loadField(geojsonTextOrObject, name) plans a field given by the page;
 // window.furrow.view.drawn says what the last frame drew (the obstacle class labels among it).
+//
+// Editing (edit-tool.js on the document of editor.js): every change, also each step of a drag,
+// re-plans; a finished change is a step of the undo history, and the edited field is kept in this
+// browser (localStorage "furrow.session") with the settings ("furrow.settings"), so a reload in the
+// cab brings back the field as drawn.
+import { BearingDial } from "./dial.js";
+import { Driver } from "./drive.js";
+import { EditTool } from "./edit-tool.js";
+import {
+  History,
+  emptyField,
+  parseRanges,
+  plannerInput,
+  referenceLineOf,
+  setProperties,
+  toCollection,
+} from "./editor.js";
 import { ERROR_HINTS, MapNotes, featureLabel, sentence } from "./notes.js";
 import { initPlanner, runPlan } from "./planner.js";
 import {
@@ -40,10 +57,19 @@ const OPTION_INPUTS = [
   "decomposition",
   "pattern",
   "reverse",
+  "direction",
+  "referenceEdge",
+  "curvatureRate",
+  "forbiddenBearings",
 ];
-const CHOICES = new Set(["headlandMode", "headlandOrder", "objective", "search", "decomposition", "pattern", "reverse"]); // <select>s: their value is the option
+const CHOICES = new Set(["headlandMode", "headlandOrder", "objective", "search", "decomposition", "pattern", "reverse", "direction"]); // <select>s: their value is the option
 const BOOLEANS = new Set(["reverse"]); // <select>s of "true" and "false"
-const OPTIONAL = new Set(["bearing", "obstacleThreshold"]); // empty: null, the planner's default
+const OPTIONAL = new Set(["bearing", "obstacleThreshold", "referenceEdge", "curvatureRate"]); // empty: null, the planner's default
+const TEXTS = new Set(["forbiddenBearings"]); // read by their own parser
+const SETTINGS_KEY = "furrow.settings";
+const SESSION_KEY = "furrow.session";
+const PREVIEW_ABOVE_MS = 100; // full plans slower than this are previewed in one direction while dragging
+const KEPT_INPUTS = [...OPTION_INPUTS, "drive-speed", "tile-url"]; // what persists across visits
 const OPENED = ":opened"; // value of the field picker's entry for an opened file
 const MAX_FILE_BYTES = 64 * 1024 * 1024; // the planner refuses more than 32 MB anyway
 
@@ -62,6 +88,13 @@ const ui = {
   warnings: $("warnings"),
   message: $("map-message"),
   version: $("version"),
+  editBar: $("edit-bar"),
+  editHint: $("edit-hint"),
+  regionPanel: $("region-panel"),
+  regionFrom: $("region-from"),
+  regionTo: $("region-to"),
+  driveSpeed: $("drive-speed"),
+  tileUrl: $("tile-url"),
 };
 
 const view = new PlanView($("map"));
@@ -73,6 +106,28 @@ const notes = new MapNotes({
   view,
 });
 view.onDraw = () => notes.layout();
+const history = new History(null);
+const tool = new EditTool({
+  view,
+  projection: () => state.projection,
+  history,
+  onChange: (doc, { final }) => applyDoc(doc, { final }),
+  onState: () => showEditState(),
+  onPickEdge: (edge) => {
+    ui.inputs.referenceEdge.value = String(edge);
+    ui.inputs.direction.value = "edge";
+    settingsChanged();
+  },
+  onPickLine: () => {
+    ui.inputs.direction.value = "line";
+    settingsChanged();
+  },
+});
+view.tool = tool;
+const driver = new Driver(view, { onState: () => showDriveState() });
+view.overlay = (ctx, theme) => driver.draw(ctx, theme);
+let dial = null; // the prohibited region's bearing dial, made when first shown
+let tiles = null; // the background map, made when a URL is set
 notes.onOpenChange = () => updateHighlights();
 const fieldCache = new Map(); // file -> Promise of the field GeoJSON
 
@@ -88,6 +143,9 @@ const state = {
   plan: null, // the last good plan
   error: null, // the last error, as { code, message, ... }
   errorHighlight: [], // the outline the error concerns, for the view
+  fieldId: 0, // which field is shown: counts fields loaded (edits keep it)
+  fullPlanMs: 0, // how long the last full plan took, call to result
+  edited: false, // the field was changed in the viewer: the planner gets the edited document
   loadToken: 0,
   replanSeq: 0, // replan calls made
   drawnSeq: 0, // the newest replan call whose result is shown
@@ -113,14 +171,24 @@ window.furrow = {
   get options() {
     return readOptions().options;
   },
+  /** The field as edited (a GeoJSON FeatureCollection), and the edit tool. */
+  get document() {
+    return history.doc;
+  },
+  tool,
+  driver,
   view,
   replan,
   selectField,
   loadField,
+  exportField: fieldText,
+  exportPlan: planText,
 };
 
 setPlanState("loading");
+restoreSettings();
 bindControls();
+bindEditing();
 start();
 registerOffline();
 
@@ -183,6 +251,12 @@ async function start() {
       return;
     }
     const wanted = decodeURIComponent(location.hash.slice(1));
+    const session = !wanted && readSession();
+    if (session) {
+      await loadField(session.doc, session.name, { edited: true });
+      setTimeout(() => fields.forEach((f) => loadFieldFile(f.file).catch(() => {})), 500);
+      return;
+    }
     const first = fields.find((f) => f.name === wanted) ?? fields.find((f) => f.name === DEFAULT_FIELD) ?? fields[0];
     await selectField(first.name);
     // Fetch the other fields in the background so that switching works offline.
@@ -205,7 +279,39 @@ function bindControls() {
     if (file) openFile(file);
   });
   bindDrop(document.querySelector(".map"));
-  for (const input of Object.values(ui.inputs)) input.addEventListener("input", replan);
+  // A bearing typed is a fixed direction; cleared, the search again.
+  ui.inputs.bearing.addEventListener("input", () => {
+    const fixed = ui.inputs.bearing.value.trim() !== "" || ui.inputs.bearing.validity.badInput;
+    if (fixed) ui.inputs.direction.value = "fixed";
+    else if (ui.inputs.direction.value === "fixed") ui.inputs.direction.value = "search";
+    showDirectionInputs();
+    saveSettings();
+  });
+  ui.inputs.direction.addEventListener("input", () => {
+    if (ui.inputs.direction.value === "edge" && ui.inputs.referenceEdge.value.trim() === "") tool.setMode("edge");
+    if (ui.inputs.direction.value === "line" && !referenceLineOf(history.doc ?? emptyField())) tool.setMode("abline");
+    showDirectionInputs();
+  });
+  for (const input of Object.values(ui.inputs)) input.addEventListener("input", settingsChanged);
+  showDirectionInputs();
+  ui.driveSpeed.addEventListener("input", () => {
+    saveSettings();
+    if (driver.running) driver.start(Number(ui.driveSpeed.value));
+  });
+  ui.tileUrl.addEventListener("input", () => {
+    saveSettings();
+    setBackground(ui.tileUrl.value.trim());
+  });
+  setBackground(ui.tileUrl.value.trim());
+  $("drive").addEventListener("click", () => {
+    if (driver.running) driver.stop();
+    else if (!driver.start(Number(ui.driveSpeed.value))) ui.status.textContent = "No plan to drive";
+  });
+  $("new-field").addEventListener("click", newField);
+  $("export-field").addEventListener("click", () => download(`${fileName()}.geojson`, fieldText()));
+  $("export-plan").addEventListener("click", () => {
+    if (state.plan) download(`${fileName()}-plan.geojson`, planText());
+  });
   // On a phone (or a short screen) the headland and obstacle options start folded, so that the
   // map (or the plan's figures) are in view; their values show beside the title.
   if (matchMedia("(max-width: 760px), (max-height: 860px)").matches) ui.more.open = false;
@@ -280,7 +386,7 @@ async function openFile(file) {
  * goes to the planner as it is, so a broken file gets the planner's own error; for drawing, as
  * much of it as can be read is drawn. Resolves to `{ plan, error }`.
  */
-async function loadField(input, name = "Opened field") {
+async function loadField(input, name = "Opened field", { edited = false } = {}) {
   const token = ++state.loadToken;
   setPlanState("loading");
   try {
@@ -295,12 +401,15 @@ async function loadField(input, name = "Opened field") {
   state.entry = { name, opened: true };
   state.source = input;
   state.field = typeof input === "string" ? parseForDrawing(input) : input;
+  if (!edited) forgetFieldReferences();
+  state.edited = edited;
   openedOption(name);
   ui.field.value = OPENED;
   ui.field.disabled = false;
   ui.suggested.disabled = true;
-  ui.note.textContent = "Opened from a file; planned with the settings below.";
-  if (location.hash) history.replaceState(null, "", location.pathname + location.search);
+  ui.note.textContent = edited ? "Drawn or edited here; planned with the settings below." : "Opened from a file; planned with the settings below.";
+  if (location.hash) window.history.replaceState(null, "", location.pathname + location.search);
+  startEditing(state.field, { edited });
   showField(state.field);
   return replan();
 }
@@ -313,7 +422,7 @@ function openedOption(name) {
     option.value = OPENED;
     ui.field.prepend(option);
   }
-  option.textContent = `${name} (opened file)`;
+  option.textContent = state.edited ? `${name} (drawn here)` : `${name} (opened file)`;
 }
 
 /** Draws a field (whatever of it can be drawn) without a plan; the next plan fits the view. */
@@ -335,6 +444,7 @@ function showField(geojson) {
     state.features = [];
     scene = { boundary: null, obstacles: [], prohibited: [], bounds: null };
   }
+  view.projection = state.projection;
   view.setField(scene, { fit: false });
   state.fitPending = true;
 }
@@ -358,10 +468,11 @@ async function selectField(name) {
   state.entry = entry;
   state.field = field;
   state.source = field;
+  startEditing(field);
   ui.suggested.disabled = false;
   ui.note.textContent = entry.note ?? "";
   if (location.hash.slice(1) !== encodeURIComponent(entry.name)) {
-    history.replaceState(null, "", `#${encodeURIComponent(entry.name)}`);
+    window.history.replaceState(null, "", `#${encodeURIComponent(entry.name)}`);
   }
   applySuggested(entry);
   showField(field);
@@ -393,6 +504,15 @@ function applySuggested(entry) {
   set("headlandPasses", entry.headlandPasses);
   set("turnRadius", entry.turnRadius);
   set("bearing", null);
+  forgetFieldReferences();
+}
+
+/** A bearing, an edge number or an AB line belong to one field: another starts from the search. */
+function forgetFieldReferences() {
+  ui.inputs.bearing.value = "";
+  ui.inputs.referenceEdge.value = "";
+  if (ui.inputs.direction.value !== "longest-edge") ui.inputs.direction.value = "search";
+  showDirectionInputs();
 }
 
 /**
@@ -410,6 +530,7 @@ function readOptions() {
     obstacleThreshold: "obstacle threshold",
   };
   for (const [id, input] of Object.entries(ui.inputs)) {
+    if (TEXTS.has(id)) continue;
     if (CHOICES.has(id)) {
       options[id] = BOOLEANS.has(id) ? input.value === "true" : input.value;
       continue;
@@ -427,7 +548,49 @@ function readOptions() {
     }
     options[id] = value;
   }
+  const forbidden = parseRanges(ui.inputs.forbiddenBearings.value);
+  if (forbidden) options.forbiddenBearings = forbidden;
+  else problems.push({ id: "forbiddenBearings", message: "Write the forbidden bearings as ranges, e.g. 20-70, 100-120." });
+  directionOptions(options, problems);
+  const extras = history.doc ? plannerInput(history.doc) : null;
+  options.entrance = extras?.entrance ?? null;
   return { options, problems };
+}
+
+/** The direction mode as the planner's options (`direction` and the one reference it uses). */
+function directionOptions(options, problems) {
+  const mode = options.direction;
+  const edge = options.referenceEdge;
+  delete options.referenceEdge;
+  switch (mode) {
+    case "fixed":
+      options.direction = "fixed";
+      if (options.bearing == null && !problems.some((p) => p.id === "bearing")) {
+        problems.push({ id: "bearing", message: "Enter the bearing to drive along." });
+      }
+      break;
+    case "edge":
+      options.direction = "reference";
+      options.bearing = null;
+      if (edge == null) problems.push({ id: "referenceEdge", message: "Tap the boundary edge to drive along (or enter its number)." });
+      else options.referenceEdge = edge;
+      break;
+    case "line": {
+      options.direction = "reference";
+      options.bearing = null;
+      const line = history.doc ? referenceLineOf(history.doc) : null;
+      if (!line) problems.push({ id: "direction", message: "Draw the AB line on the map: tap A, then B." });
+      else options.referenceLine = line;
+      break;
+    }
+    case "longest-edge":
+      options.direction = "longest-edge";
+      options.bearing = null;
+      break;
+    default:
+      options.direction = "search";
+      options.bearing = null;
+  }
 }
 
 /** "Direction per block, 3 directions" with the candidates' times for auto. */
@@ -454,7 +617,9 @@ function decompositionText(d) {
 function showMoreState() {
   const text = (id) => ui.inputs[id].selectedOptions?.[0]?.textContent ?? "";
   const threshold = ui.inputs.obstacleThreshold.value.trim();
+  const direction = ui.inputs.direction.value;
   ui.moreState.textContent = [
+    ...(direction === "search" || direction === "fixed" ? [] : [text("direction").toLowerCase()]),
     text("headlandMode"),
     text("headlandOrder").replace(/ \(.*\)$/, "").toLowerCase(),
     threshold === "" ? "1 width" : `${threshold} m`,
@@ -468,11 +633,16 @@ function showMoreState() {
  * made while one plans replace each other: only the newest runs next, and a result older than
  * the one drawn is never drawn.
  */
-async function replan() {
+async function replan(how) {
   showMoreState();
   if (state.source == null) return { plan: null, error: null };
   const seq = ++state.replanSeq;
   const { options, problems } = readOptions();
+  // While a vertex is dragged on a field whose plan takes more than a few frames, each step is
+  // planned in one direction (a fraction of the time of comparing decompositions); the release
+  // plans it in full.
+  const preview = how?.preview === true && state.fullPlanMs > PREVIEW_ABOVE_MS && options.decomposition !== "none";
+  if (preview) options.decomposition = "none";
   markInvalid(problems.map((p) => p.id));
   if (problems.length) {
     state.drawnSeq = seq;
@@ -480,17 +650,21 @@ async function replan() {
     return { plan: state.plan, error: state.error };
   }
   setPlanState("planning");
-  const source = state.source;
-  const result = await runPlan(source, options);
-  if (result.stale || seq <= state.drawnSeq || source !== state.source) {
-    // A newer edit (or another field) came first: its plan is drawn instead.
+  const fieldId = state.fieldId;
+  const result = await runPlan(state.source, options);
+  if (result.stale || seq <= state.drawnSeq || fieldId !== state.fieldId) {
+    // A newer edit (or another field) came first: its plan is drawn instead. (An older edit's
+    // plan of the same field is drawn while the newest plans: a drag shows the plan follow.)
     return { plan: state.plan, error: state.error };
   }
   state.drawnSeq = seq;
   const fit = state.fitPending;
   state.fitPending = false;
+  if (!preview && !result.error) state.fullPlanMs = result.ms;
+  document.body.dataset.planPreview = String(preview);
   if (result.error) showPlanError(result.error);
   else showPlan(result.plan, options, result.ms);
+  if (preview && !result.error) ui.status.textContent = "Preview while dragging (one direction); the full plan on release";
   if (fit) view.fit();
   // Newer edits are on their way: not ready until the newest is drawn.
   if (seq !== state.replanSeq) setPlanState("planning");
@@ -500,6 +674,8 @@ async function replan() {
 
 function showPlan(plan, options, callMs) {
   state.plan = plan;
+  driver.setPlan(plan.samples, state.projection, options.width);
+  showDriveState();
   state.error = null;
   state.errorHighlight = [];
   view.extraBounds = null;
@@ -519,6 +695,7 @@ function showPlan(plan, options, callMs) {
   updateHighlights();
   document.body.dataset.swathCount = String(s.swath_count ?? 0);
   document.body.dataset.planMs = String(s.planning_ms ?? callMs);
+  showEditState();
   setPlanState("ready");
 }
 
@@ -578,6 +755,8 @@ function errorPlace(error) {
 function showPlanError(error, { local = false } = {}) {
   state.error = error;
   state.plan = null;
+  driver.setPlan(null);
+  showDriveState();
   const place = local ? { anchor: null, marker: null, paths: [] } : errorPlace(error);
   state.errorHighlight = place.paths.length ? [{ paths: place.paths, kind: "error" }] : [];
   view.extraBounds = place.anchor ? pathBounds(place.paths, [place.anchor, place.marker]) : null;
@@ -607,6 +786,7 @@ function showPlanError(error, { local = false } = {}) {
   renderWarnings([], { text: `${title}: ${text}${at}`, code: error.code, feature: error.feature });
   delete document.body.dataset.swathCount;
   delete document.body.dataset.planMs;
+  showEditState();
   setPlanState("error");
 }
 
@@ -807,4 +987,330 @@ function setPlanState(s) {
 
 function formatNumber(v, digits) {
   return Number(v).toLocaleString(undefined, { minimumFractionDigits: digits, maximumFractionDigits: digits });
+}
+
+// ---- editing -------------------------------------------------------------------------------------
+
+/** A new field is shown: its document starts the edit history (not editable: no document). */
+function startEditing(field, { edited = false } = {}) {
+  state.fieldId++;
+  const doc = toCollection(field);
+  history.reset(doc);
+  tool.setMode(doc ? (tool.mode === "view" ? "view" : "edit") : "view");
+  // A field saved here carries its entrance and AB line: the planner gets them as options.
+  const input = doc ? plannerInput(doc) : null;
+  state.edited = edited || Boolean(input && input.field !== doc);
+  if (state.edited && input) state.source = input.field;
+  showEditState();
+}
+
+/** An edit: draw the field as it is now and plan it; a finished edit is kept for the next visit. */
+function applyDoc(doc, { final }) {
+  state.edited = true;
+  state.field = doc;
+  const input = plannerInput(doc);
+  state.source = input.field;
+  if (!state.entry?.opened) {
+    // A bundled field, once edited, is the user's own: the picker shows it as opened.
+    const name = `${state.entry?.name ?? "Field"} (edited)`;
+    state.entry = { name, opened: true };
+    openedOption(name);
+    ui.field.value = OPENED;
+    ui.suggested.disabled = true;
+    if (location.hash) window.history.replaceState(null, "", location.pathname + location.search);
+  }
+  ui.note.textContent = "Drawn or edited here; planned with the settings below.";
+  if (final) {
+    state.opened = { source: doc, name: state.entry.name };
+    saveSession();
+  }
+  refreshField(doc);
+  if (hasPolygon(doc)) replan({ preview: !final });
+  else {
+    driver.setPlan(null);
+    view.setPlan(null);
+    ui.status.textContent = "Draw the field: tap its corners on the map";
+  }
+  showEditState();
+}
+
+const hasPolygon = (doc) => doc.features.some((f) => ["Polygon", "MultiPolygon"].includes(f?.geometry?.type));
+
+/** Redraws the field from the document, keeping the projection (the map does not shift while
+ * a vertex is dragged) and the plan until the next one arrives. */
+function refreshField(doc) {
+  try {
+    const parts = fieldParts(doc);
+    const features = inputFeatures(doc);
+    if (!state.projection) state.projection = projectionFor(parts, features);
+    view.projection = state.projection;
+    state.features = features.map((f) => projectFeature(f, state.projection));
+    view.setField(fieldScene(parts, state.projection), { fit: false, keepPlan: true });
+  } catch (e) {
+    console.warn("furrow viewer: the field could not be drawn", e);
+  }
+}
+
+/** Starts a new, empty field where the map is: the boundary tool is on. */
+function newField() {
+  state.loadToken++;
+  const name = "New field";
+  state.entry = { name, opened: true };
+  state.opened = null;
+  state.source = null;
+  state.field = emptyField();
+  state.plan = null;
+  state.error = null;
+  state.edited = true;
+  openedOption(name);
+  ui.field.value = OPENED;
+  ui.suggested.disabled = true;
+  ui.note.textContent = "Tap the corners of the field on the map; tap the first corner again to close it.";
+  if (location.hash) window.history.replaceState(null, "", location.pathname + location.search);
+  forgetFieldReferences();
+  notes.hideError();
+  notes.clearWarnings({ notify: false });
+  history.reset(state.field);
+  state.fieldId++;
+  state.features = [];
+  view.setField({ boundary: null, obstacles: [], prohibited: [], bounds: view.field?.bounds ?? null }, { fit: false });
+  driver.setPlan(null);
+  ui.summary.replaceChildren();
+  renderWarnings([]);
+  ui.status.textContent = "Draw the field: tap its corners on the map";
+  delete document.body.dataset.swathCount;
+  setPlanState("ready");
+  tool.setMode("boundary");
+}
+
+function bindEditing() {
+  for (const button of ui.editBar.querySelectorAll("button[data-mode]")) {
+    button.addEventListener("click", () => {
+      if (!history.doc) return;
+      tool.setMode(button.dataset.mode);
+      view.canvas.focus({ preventScroll: true });
+    });
+  }
+  $("finish").addEventListener("click", () => tool.finish());
+  $("delete").addEventListener("click", () => tool.deleteSelection());
+  $("undo").addEventListener("click", () => tool.undo());
+  $("redo").addEventListener("click", () => tool.redo());
+  // Undo and redo from anywhere but a text box.
+  window.addEventListener("keydown", (e) => {
+    if (e.target instanceof HTMLInputElement || e.target instanceof HTMLSelectElement || e.target === view.canvas) return;
+    const key = e.key.toLowerCase();
+    if ((e.ctrlKey || e.metaKey) && (key === "z" || key === "y")) {
+      if (key === "y" || e.shiftKey) tool.redo();
+      else tool.undo();
+      e.preventDefault();
+    }
+  });
+  const region = () => {
+    const from = Number(ui.regionFrom.value);
+    const to = Number(ui.regionTo.value);
+    if (ui.regionFrom.value.trim() === "" || ui.regionTo.value.trim() === "" || !Number.isFinite(from) || !Number.isFinite(to)) return;
+    setForbidden(from, to, true);
+  };
+  ui.regionFrom.addEventListener("input", region);
+  ui.regionTo.addEventListener("input", region);
+  // The scale bar keeps above the edit bar.
+  const tools = document.querySelector(".map-tools");
+  new ResizeObserver(() => {
+    view.bottomInset = ui.editBar.offsetHeight + 8;
+    view.fitInsets = { right: tools.offsetWidth + 10, bottom: ui.editBar.offsetHeight + 10 };
+    if (view.fitted) view.fit();
+    else view.draw();
+  }).observe(ui.editBar);
+  showEditState();
+  showDriveState();
+}
+
+/** Sets the selected prohibited region's first forbidden range (others it has stay). */
+function setForbidden(from, to, final) {
+  const selected = tool.selectedFeature;
+  if (!selected || selected.role !== "prohibited") return;
+  const ranges = Array.isArray(selected.feature.properties?.forbidden_bearings_deg)
+    ? selected.feature.properties.forbidden_bearings_deg.slice(1)
+    : [];
+  const doc = setProperties(history.doc, selected.index, { forbidden_bearings_deg: [[from, to], ...ranges] });
+  if (!doc) return;
+  tool.change(doc, final);
+}
+
+/** The edit bar, the hint beside it and the region panel, as the tool's state says. */
+function showEditState() {
+  const editable = Boolean(history.doc);
+  ui.editBar.dataset.mode = tool.mode;
+  document.body.dataset.editMode = tool.mode;
+  for (const button of ui.editBar.querySelectorAll("button")) {
+    if (button.dataset.mode) {
+      button.setAttribute("aria-pressed", String(button.dataset.mode === tool.mode));
+      button.disabled = !editable;
+    }
+  }
+  $("finish").hidden = !tool.drawing || tool.mode === "abline";
+  $("finish").disabled = tool.draft.length < 3;
+  $("delete").disabled = !tool.selection;
+  $("undo").disabled = !history.canUndo;
+  $("redo").disabled = !history.canRedo;
+  $("export-field").disabled = !editable;
+  $("export-plan").disabled = !state.plan;
+  const hints = {
+    edit: "Drag a corner; tap the mark in the middle of an edge to add one; tap a corner or region, then Delete.",
+    boundary: `Field: tap its corners${tool.draft.length >= 3 ? "; tap the first again or Finish to close" : ""}.`,
+    obstacle: `Obstacle: tap its corners${tool.draft.length >= 3 ? "; tap the first again or Finish to close" : ""}.`,
+    prohibited: `Prohibited region: tap its corners${tool.draft.length >= 3 ? "; tap the first again or Finish to close" : ""}.`,
+    entrance: "Tap where the machine enters the field.",
+    abline: tool.draft.length ? "Now tap B." : "Tap A, then B: the swaths run along the line.",
+    edge: "Tap the boundary edge the swaths should run along.",
+  };
+  const hint = hints[tool.mode];
+  ui.editHint.hidden = !hint;
+  ui.editHint.textContent = hint ?? "";
+  showRegionPanel();
+}
+
+function showRegionPanel() {
+  const selected = tool.selectedFeature;
+  const show = selected?.role === "prohibited";
+  ui.regionPanel.hidden = !show;
+  if (!show) return;
+  const range = selected.feature.properties?.forbidden_bearings_deg?.[0] ?? [0, 0];
+  $("region-name").textContent = selected.feature.properties?.name ? `“${selected.feature.properties.name}”` : `(feature ${selected.index})`;
+  // Typing stays as typed; the numbers follow the dial and the undo history.
+  if (document.activeElement !== ui.regionFrom) ui.regionFrom.value = String(range[0]);
+  if (document.activeElement !== ui.regionTo) ui.regionTo.value = String(range[1]);
+  dial ??= new BearingDial($("region-dial"), {
+    label: "Forbidden bearings of the region",
+    onChange: ({ from, to, final }) => setForbidden(from, to, final),
+  });
+  dial.set(range[0], range[1]);
+}
+
+// ---- files -------------------------------------------------------------------------------------
+
+function fileName() {
+  return (state.entry?.name ?? "field").replace(/ \(edited\)$/, "-edited").replace(/[^\w.-]+/g, "-") || "field";
+}
+
+/** The field as GeoJSON text: the document as edited (a file opened and not edited comes back
+ * as it was read). */
+function fieldText() {
+  const doc = history.doc;
+  return doc ? `${JSON.stringify(doc, null, 1)}\n` : "";
+}
+
+/** The plan as GeoJSON text (without the sampled path, which is not GeoJSON). */
+function planText() {
+  if (!state.plan) return "";
+  const { samples, ...plan } = state.plan;
+  void samples;
+  return `${JSON.stringify(plan)}\n`;
+}
+
+function download(name, text) {
+  if (!text) return;
+  const url = URL.createObjectURL(new Blob([text], { type: "application/geo+json" }));
+  const a = document.createElement("a");
+  a.href = url;
+  a.download = name;
+  document.body.append(a);
+  a.click();
+  a.remove();
+  setTimeout(() => URL.revokeObjectURL(url), 10_000);
+}
+
+// ---- settings and session, kept in this browser ----------------------------------------------------
+
+function settingsChanged() {
+  showDirectionInputs();
+  saveSettings();
+  replan();
+}
+
+function showDirectionInputs() {
+  $("edge-input").hidden = ui.inputs.direction.value !== "edge";
+}
+
+function storage() {
+  try {
+    return window.localStorage;
+  } catch {
+    return null; // blocked: nothing is kept
+  }
+}
+
+function saveSettings() {
+  const values = {};
+  for (const id of KEPT_INPUTS) values[id] = $(id).value;
+  try {
+    storage()?.setItem(SETTINGS_KEY, JSON.stringify(values));
+  } catch {
+    // full or blocked: the settings hold for this visit
+  }
+}
+
+function restoreSettings() {
+  let values;
+  try {
+    values = JSON.parse(storage()?.getItem(SETTINGS_KEY) ?? "null");
+  } catch {
+    values = null;
+  }
+  if (!values || typeof values !== "object") return;
+  for (const id of KEPT_INPUTS) {
+    const el = $(id);
+    const v = values[id];
+    if (typeof v !== "string") continue;
+    if (el instanceof HTMLSelectElement && ![...el.options].some((o) => o.value === v)) continue;
+    el.value = v;
+  }
+}
+
+function saveSession() {
+  const doc = history.doc;
+  if (!doc) return;
+  try {
+    storage()?.setItem(SESSION_KEY, JSON.stringify({ name: state.entry?.name ?? "Field", doc }));
+  } catch {
+    // too large for the browser's storage: the field holds for this visit
+  }
+}
+
+function readSession() {
+  try {
+    const s = JSON.parse(storage()?.getItem(SESSION_KEY) ?? "null");
+    return s && typeof s.name === "string" && toCollection(s.doc) ? s : null;
+  } catch {
+    return null;
+  }
+}
+
+// ---- background map and driving ---------------------------------------------------------------------
+
+/** The optional background map: off (nothing fetched) unless a tile URL is set. */
+async function setBackground(url) {
+  if (!url) {
+    tiles?.setUrl("");
+    view.background = null;
+    view.draw();
+    return;
+  }
+  if (!tiles) {
+    const { TileLayer } = await import("./tiles.js");
+    tiles ??= new TileLayer({ onLoad: () => view.requestDraw() });
+  }
+  if (ui.tileUrl.value.trim() !== url) return; // changed again meanwhile
+  tiles.setUrl(url);
+  view.background = tiles;
+  view.draw();
+}
+
+function showDriveState() {
+  const button = $("drive");
+  button.setAttribute("aria-pressed", String(driver.running));
+  button.textContent = driver.running ? "Stop" : "Drive";
+  button.disabled = !driver.samples;
+  document.body.dataset.drive = driver.running ? "running" : driver.t > 0 ? "paused" : "stopped";
+  document.body.dataset.driveS = String(Math.round(driver.t));
 }

@@ -2,6 +2,10 @@
 // (drag with mouse, pen or one finger), zoom (wheel or trackpad pinch about the cursor, two-finger
 // pinch, double click, + / - keys and buttons) and fit.
 //
+// Over this, three optional layers that others own: `background` (an XYZ tile layer, tiles.js,
+// drawn under the field), `tool` (the field editor, edit-tool.js: it takes the presses on its
+// handles and taps, and draws its marks) and `overlay(ctx, view)` (the machine driving the path).
+//
 // Colours come from CSS custom properties (style.css) so that a night theme can swap them; the
 // constants below are only the fallback when a property is missing.
 
@@ -36,12 +40,18 @@ export const THEME_VARS = {
   warnMark: ["--warn-mark", "#ffd23f"],
   warnEdge: ["--warn-edge", "#6b4e00"],
   scale: ["--scale-text", "#2b2f28"],
+  select: ["--select", "#0a84ff"],
+  entrance: ["--entrance", "#1e9e3a"],
+  reference: ["--reference", "#7a3fb0"],
+  machine: ["--machine", "#ff5a00"],
 };
 
 const BLOCK_KEYS = ["block1", "block2", "block3", "block4", "block5", "block6"];
 const FONT = 'system-ui, -apple-system, "Segoe UI", Roboto, "Helvetica Neue", Arial, sans-serif';
 const FIT_PADDING = 28; // CSS px around the field when fitting
 const MAX_SCALE = 200; // px per metre
+const TAP_PX = 6; // a press that moves less than this is a tap, not a pan or a drag
+const TAP_MS = 600;
 const BADGE_RADIUS = 14; // CSS px: the warning badges' pip (notes.js, style.css .pip) and a margin
 
 /** Reads the theme colours from CSS custom properties of `el`. */
@@ -79,6 +89,14 @@ export class PlanView {
     this.theme = readTheme();
     this.hatch = null;
     this.onViewChange = null;
+    this.background = null; // { draw(ctx, view, projection) }
+    this.projection = null; // the field's, for the background
+    this.tool = null; // { hit, drag, release, tap, doubleTap, hover, key, draw }
+    this.toolDrag = null; // { id, target, moved, start }
+    this.taps = new Map(); // pointer id -> where and when it went down, to tell taps from pans
+    this.overlay = null; // (ctx, theme, view) => void, drawn last
+    this.bottomInset = 0; // CSS px at the bottom that a bar covers: the scale bar keeps above
+    this.fitInsets = null; // { top, right, bottom, left } CSS px of the map that buttons cover
     this.onDraw = null; // called after every frame, to move what lies over the canvas
     // What the last frame drew, for tests and debugging: the obstacle class labels in view
     // ({ text, index, x, y } in CSS px of the canvas), and the lifted stretches of swaths.
@@ -97,9 +115,14 @@ export class PlanView {
     this.draw();
   }
 
-  /** Shows a field (fieldScene); fits the view to it when `fit` is true. */
-  setField(field, { fit = true } = {}) {
+  /** Shows a field (fieldScene); fits the view to it when `fit` is true. `keepPlan`: the plan
+   * drawn stays until the next (the field is being edited and re-planned). */
+  setField(field, { fit = true, keepPlan = false } = {}) {
     this.field = field;
+    if (keepPlan) {
+      this.draw();
+      return;
+    }
     this.plan = null;
     this.marker = null;
     this.highlights = [];
@@ -145,9 +168,17 @@ export class PlanView {
       const w = Math.max(b[2] - b[0], 1);
       const h = Math.max(b[3] - b[1], 1);
       const pad = Math.min(FIT_PADDING, this.cssW / 8, this.cssH / 8);
-      this.scale = Math.min((this.cssW - 2 * pad) / w, (this.cssH - 2 * pad) / h);
-      this.cx = (b[0] + b[2]) / 2;
-      this.cy = (b[1] + b[3]) / 2;
+      // The free part of the map: without the buttons over its edges, where they leave most of it.
+      let { top = 0, right = 0, bottom = 0, left = 0 } = this.fitInsets ?? {};
+      if (left + right > this.cssW / 3) left = right = 0;
+      if (top + bottom > this.cssH / 3) top = bottom = 0;
+      const fw = this.cssW - 2 * pad - left - right;
+      const fh = this.cssH - 2 * pad - top - bottom;
+      this.scale = Math.min(fw / w, fh / h);
+      const sx = left + pad + fw / 2; // the free part's centre on screen
+      const sy = top + pad + fh / 2;
+      this.cx = (b[0] + b[2]) / 2 - (sx - this.cssW / 2) / this.scale;
+      this.cy = (b[1] + b[3]) / 2 + (sy - this.cssH / 2) / this.scale;
     }
     this.draw();
     this.changed();
@@ -229,21 +260,56 @@ export class PlanView {
     c.addEventListener("pointerdown", (e) => {
       if (e.pointerType === "mouse" && e.button !== 0) return;
       c.setPointerCapture(e.pointerId);
-      this.pointers.set(e.pointerId, at(e));
-      c.classList.add("dragging");
+      const p = at(e);
       e.preventDefault();
+      c.focus({ preventScroll: true });
+      if (this.toolDrag) {
+        // A second finger while a handle is dragged: the drag ends, the fingers pan and pinch.
+        this.endToolDrag(this.toolDrag.start);
+      } else if (this.pointers.size === 0) {
+        const target = this.tool?.hit(p, e);
+        if (target) {
+          this.toolDrag = { id: e.pointerId, target, moved: false, start: p };
+          c.classList.add("dragging-handle");
+          return;
+        }
+      }
+      this.taps.set(e.pointerId, { x: p.x, y: p.y, t: performance.now(), multi: this.pointers.size > 0 });
+      for (const tap of this.taps.values()) if (this.pointers.size > 0) tap.multi = true;
+      this.pointers.set(e.pointerId, p);
+      c.classList.add("dragging");
     });
     c.addEventListener("pointermove", (e) => {
-      if (!this.pointers.has(e.pointerId)) return;
+      const p = at(e);
+      const drag = this.toolDrag;
+      if (drag && drag.id === e.pointerId) {
+        if (!drag.moved && Math.hypot(p.x - drag.start.x, p.y - drag.start.y) < TAP_PX) return;
+        drag.moved = true;
+        this.tool.drag(drag.target, p, e);
+        return;
+      }
+      if (!this.pointers.has(e.pointerId)) {
+        if (this.pointers.size === 0 && e.pointerType === "mouse") this.tool?.hover?.(p, e);
+        return;
+      }
       const before = this.gesture();
-      this.pointers.set(e.pointerId, at(e));
+      this.pointers.set(e.pointerId, p);
       const after = this.gesture();
       const ratio = before.dist > 0 && after.dist > 0 ? after.dist / before.dist : 1;
       this.moveTo(before.x, before.y, after.x, after.y, ratio);
     });
     const up = (e) => {
-      this.pointers.delete(e.pointerId);
+      if (this.toolDrag?.id === e.pointerId) {
+        this.endToolDrag(at(e));
+        return;
+      }
+      const tap = this.taps.get(e.pointerId);
+      this.taps.delete(e.pointerId);
+      const wasPointer = this.pointers.delete(e.pointerId);
       if (this.pointers.size === 0) c.classList.remove("dragging");
+      if (e.type !== "pointerup" || !wasPointer || !tap || tap.multi) return;
+      const p = at(e);
+      if (Math.hypot(p.x - tap.x, p.y - tap.y) < TAP_PX && performance.now() - tap.t < TAP_MS) this.tool?.tap(p, e);
     };
     c.addEventListener("pointerup", up);
     c.addEventListener("pointercancel", up);
@@ -262,9 +328,14 @@ export class PlanView {
     );
     c.addEventListener("dblclick", (e) => {
       const { x, y } = at(e);
+      if (this.tool?.doubleTap({ x, y }, e)) return;
       this.zoomAt(e.shiftKey ? 0.5 : 2, x, y);
     });
     c.addEventListener("keydown", (e) => {
+      if (this.tool?.key(e)) {
+        e.preventDefault();
+        return;
+      }
       const step = 0.15 * Math.min(this.cssW, this.cssH);
       const w = this.cssW / 2;
       const h = this.cssH / 2;
@@ -285,6 +356,14 @@ export class PlanView {
         e.preventDefault();
       }
     });
+  }
+
+  /** The press on a tool's handle ends at `p` (CSS px). */
+  endToolDrag(p) {
+    const drag = this.toolDrag;
+    this.toolDrag = null;
+    this.canvas.classList.remove("dragging-handle");
+    if (drag) this.tool?.release(drag.target, p, drag.moved);
   }
 
   /** Midpoint and spread of the (first two) active pointers. */
@@ -322,6 +401,7 @@ export class PlanView {
 
     const field = this.field;
     const plan = this.plan;
+    if (this.background && this.projection) this.background.draw(ctx, this, this.projection);
     if (field?.boundary) {
       this.polygonPath(field.boundary);
       ctx.fillStyle = t.field;
@@ -348,6 +428,8 @@ export class PlanView {
     }
     if (plan) this.drawPaths(plan);
     this.drawHighlights();
+    this.tool?.draw(ctx, t, this);
+    this.overlay?.(ctx, t, this);
     if (this.marker) this.drawMarker(this.marker);
     this.drawScaleBar();
     this.onDraw?.();
@@ -729,7 +811,7 @@ export class PlanView {
     const metres = [5, 2, 1].map((m) => m * pow).find((m) => m <= target) ?? pow;
     const px = metres * this.scale;
     const x = 14;
-    const y = this.cssH - 16;
+    const y = this.cssH - 16 - this.bottomInset;
     const label = metres >= 1000 ? `${metres / 1000} km` : `${+metres.toPrecision(3)} m`;
     ctx.font = `600 12px ${FONT}`;
     ctx.textAlign = "left";

@@ -1,0 +1,385 @@
+// The viewer's editing in headless Chromium (playwright-core, Debian's chromium): a field drawn
+// with the mouse and by touch, an obstacle and a prohibited region added, vertices dragged,
+// inserted and deleted, undo and redo, the entrance; files imported and exported again equal; a
+// vertex dragged on the large field with the frame times measured and stale plans never drawn;
+// the machine driven along the path; touch targets; screenshots of corpus fields day and night.
+//
+//   bash scripts/build.sh   (once), then   node --test pkg-tests/editor.test.mjs
+import { test } from "node:test";
+import assert from "node:assert/strict";
+import { mkdirSync, readFileSync } from "node:fs";
+import { join } from "node:path";
+import {
+  FIELDS,
+  SHOTS,
+  TIMEOUT,
+  countColour,
+  dataset,
+  fieldPasses,
+  planKey,
+  ready,
+  setInput,
+  withViewer,
+} from "./viewer-support.mjs";
+
+const DESKTOP = { viewport: { width: 1280, height: 800 }, deviceScaleFactor: 1 };
+
+/** The canvas's top-left corner in page px. */
+async function mapOrigin(page) {
+  const box = await page.locator("#map").boundingBox();
+  return { x: box.x, y: box.y, width: box.width, height: box.height };
+}
+
+/** Screen position (page px) of vertex `i` of the first ring of feature `feature` of the document. */
+async function vertexAt(page, feature, i) {
+  const o = await mapOrigin(page);
+  const [x, y] = await page.evaluate(
+    ([feature, i]) => {
+      const { tool, view } = window.furrow;
+      const ring = tool.rings().find((r) => r.feature === feature && r.ring === 0);
+      return view.toScreen(ring.world[i]);
+    },
+    [feature, i],
+  );
+  return { x: o.x + x, y: o.y + y };
+}
+
+/** The document's feature `feature`, first ring, without the closing point. */
+const ringOf = (page, feature) =>
+  page.evaluate((feature) => {
+    const c = window.furrow.document.features[feature].geometry.coordinates[0];
+    return c.slice(0, -1);
+  }, feature);
+
+const docOf = (page) => page.evaluate(() => window.furrow.document);
+
+/** Waits until the plan drawn is that of the newest edit. */
+async function planned(page) {
+  await page.waitForFunction(
+    () => document.body.dataset.planState === "ready" && window.furrow.replans.made === window.furrow.replans.drawn,
+    null,
+    { timeout: 20_000 },
+  );
+}
+
+test("editor: draw a field with the mouse, add an obstacle and a region, edit, undo, keep it", { timeout: TIMEOUT }, async () => {
+  mkdirSync(SHOTS, { recursive: true });
+  await withViewer(DESKTOP, async (page, base) => {
+    await page.goto(base);
+    await ready(page);
+    const o = await mapOrigin(page);
+
+    // A new field: tap four corners and the first again.
+    await page.click("#new-field");
+    assert.equal((await dataset(page)).editMode, "boundary");
+    const cx = o.x + o.width / 2;
+    const cy = o.y + o.height / 2;
+    const corners = [
+      [cx - 220, cy - 150],
+      [cx + 220, cy - 150],
+      [cx + 220, cy + 150],
+      [cx - 220, cy + 150],
+    ];
+    for (const [x, y] of corners) await page.mouse.click(x, y);
+    assert.equal(await page.isVisible("#finish"), true, "Finish shows while drawing");
+    await page.mouse.click(corners[0][0], corners[0][1]); // closes it
+    await planned(page);
+    let doc = await docOf(page);
+    assert.equal(doc.features.length, 1);
+    assert.equal(doc.features[0].properties.role, "boundary");
+    assert.equal(doc.features[0].geometry.coordinates[0].length, 5, "four corners, closed");
+    const swaths = Number((await dataset(page)).swathCount);
+    assert.ok(swaths > 5, `${swaths} swaths in the drawn field`);
+    for (const kind of ["--swath", "--headland", "--turn", "--boundary"]) {
+      const n = await countColour(page, kind);
+      assert.ok(n > 100, `only ${n} pixels of ${kind} on the canvas`);
+    }
+    assert.equal((await dataset(page)).editMode, "edit", "drawing ends in edit mode");
+
+    // An obstacle in the middle: three taps and Finish.
+    await page.click('#edit-bar [data-mode="obstacle"]');
+    for (const [dx, dy] of [
+      [-40, -30],
+      [40, -30],
+      [0, 40],
+    ]) {
+      await page.mouse.click(cx + dx, cy + dy);
+    }
+    await page.click("#finish");
+    await planned(page);
+    doc = await docOf(page);
+    assert.equal(doc.features[1].properties.role, "obstacle");
+    const planObstacles = await page.evaluate(
+      () => window.furrow.plan.features.filter((f) => f.properties.kind === "obstacle").length,
+    );
+    assert.equal(planObstacles, 1, "the plan has the obstacle");
+    const aroundObstacle = await page.evaluate(
+      () => window.furrow.plan.features.filter((f) => f.properties.kind === "headland" && f.properties.around !== "field").length,
+    );
+    assert.ok(aroundObstacle > 0, "the obstacle gets headland passes");
+    await page.screenshot({ path: join(SHOTS, "editor-drawn.png") });
+
+    // Headland passes change the plan of the drawn field.
+    const before = await planKey(page);
+    await setInput(page, "headlandPasses", 3);
+    await planned(page);
+    assert.equal(await fieldPasses(page), 3);
+    assert.notEqual(await planKey(page), before);
+
+    // Drag a corner outwards: the plan follows; undo puts it back, redo again.
+    await page.click('#edit-bar [data-mode="edit"]');
+    const ring0 = await ringOf(page, 0);
+    const v = await vertexAt(page, 0, 2);
+    await page.mouse.move(v.x, v.y);
+    await page.mouse.down();
+    await page.mouse.move(v.x + 30, v.y + 20, { steps: 5 });
+    await page.mouse.move(v.x + 60, v.y + 40, { steps: 5 });
+    await page.mouse.up();
+    await planned(page);
+    const ring1 = await ringOf(page, 0);
+    assert.notDeepEqual(ring1[2], ring0[2], "the corner moved");
+    assert.deepEqual(ring1[0], ring0[0], "the other corners stayed");
+    const dragged = await page.evaluate(() => window.furrow.plan.summary.field_area_m2);
+    await page.click("#undo");
+    await planned(page);
+    assert.deepEqual(await ringOf(page, 0), ring0, "undo puts the corner back");
+    const undone = await page.evaluate(() => window.furrow.plan.summary.field_area_m2);
+    assert.ok(dragged > undone * 1.02, `area ${dragged} after the drag, ${undone} after undo`);
+    await page.click("#redo");
+    await planned(page);
+    assert.deepEqual(await ringOf(page, 0), ring1, "redo moves it again");
+
+    // Tap the mark in the middle of edge 0: a vertex there; select it and delete it.
+    const a = await vertexAt(page, 0, 0);
+    const b = await vertexAt(page, 0, 1);
+    await page.mouse.click((a.x + b.x) / 2, (a.y + b.y) / 2);
+    await planned(page);
+    assert.equal((await ringOf(page, 0)).length, 5, "a vertex inserted");
+    const inserted = await vertexAt(page, 0, 1);
+    await page.mouse.click(inserted.x, inserted.y);
+    await page.click("#delete");
+    await planned(page);
+    assert.equal((await ringOf(page, 0)).length, 4, "the vertex deleted");
+
+    // A prohibited region: drawn, then its forbidden bearings set by numbers.
+    await page.click('#edit-bar [data-mode="prohibited"]');
+    for (const [dx, dy] of [
+      [60, -120],
+      [200, -120],
+      [200, 120],
+      [60, 120],
+    ]) {
+      await page.mouse.click(cx + dx, cy + dy);
+    }
+    await page.click("#finish");
+    await planned(page);
+    assert.equal(await page.isVisible("#region-panel"), true, "the region's panel shows");
+    assert.ok(await page.isVisible("#region-dial svg"), "with a dial");
+    await page.fill("#region-from", "80");
+    await page.fill("#region-to", "100");
+    await planned(page);
+    doc = await docOf(page);
+    const region = doc.features.find((f) => f.properties.role === "prohibited");
+    assert.deepEqual(region.properties.forbidden_bearings_deg, [[80, 100]]);
+    // The dial's handle moves the range too (keyboard on its slider).
+    await page.focus('#region-dial [aria-label="To bearing"]');
+    await page.keyboard.press("Shift+ArrowRight");
+    await planned(page);
+    doc = await docOf(page);
+    assert.deepEqual(doc.features.find((f) => f.properties.role === "prohibited").properties.forbidden_bearings_deg, [[80, 110]]);
+    assert.equal(await page.inputValue("#region-to"), "110");
+
+    // The entrance: tap a point on the field's edge; the plan starts there.
+    await page.click('#edit-bar [data-mode="entrance"]');
+    const e0 = await vertexAt(page, 0, 0);
+    const e1 = await vertexAt(page, 0, 3);
+    await page.mouse.click(e0.x, (e0.y + e1.y) / 2);
+    await planned(page);
+    const entrance = await page.evaluate(() => window.furrow.options.entrance);
+    assert.ok(Array.isArray(entrance) && entrance.length === 2, "the entrance is an option");
+    const fromEntrance = await page.evaluate(
+      () => window.furrow.plan.features.filter((f) => f.properties.kind === "connection" && f.properties.sequence === 0).length,
+    );
+    assert.equal(fromEntrance, 1, "the route starts with a connection from the entrance");
+    await page.screenshot({ path: join(SHOTS, "editor-edited.png") });
+
+    // A reload brings the field back as drawn, with the settings.
+    const kept = await docOf(page);
+    await page.reload();
+    await planned(page);
+    assert.deepEqual(await docOf(page), kept, "the edited field is kept in this browser");
+    assert.equal(await page.inputValue("#headlandPasses"), "3");
+    assert.ok(Number((await dataset(page)).swathCount) > 0);
+  });
+});
+
+test("editor: import a corpus file and export it again equal; export the plan", { timeout: TIMEOUT }, async () => {
+  await withViewer({ ...DESKTOP, acceptDownloads: true }, async (page, base) => {
+    await page.goto(base);
+    await ready(page);
+    for (const name of ["obstacle-types", "underdrain", "real/dk_marker_2026_sample"]) {
+      const path = join(FIELDS, `${name}.geojson`);
+      const [chooser] = await Promise.all([page.waitForEvent("filechooser"), page.click("#open-file")]);
+      await chooser.setFiles(path);
+      await page.waitForSelector("body[data-plan-state=ready], body[data-plan-state=error]");
+      const [download] = await Promise.all([page.waitForEvent("download"), page.click("#export-field")]);
+      const text = readFileSync(await download.path(), "utf8");
+      assert.deepEqual(JSON.parse(text), JSON.parse(readFileSync(path, "utf8")), `${name}: exported equal to the file`);
+      assert.match(download.suggestedFilename(), /\.geojson$/);
+    }
+    // The plan: its features and figures as GeoJSON.
+    const [chooser] = await Promise.all([page.waitForEvent("filechooser"), page.click("#open-file")]);
+    await chooser.setFiles(join(FIELDS, "h-shape.geojson"));
+    await planned(page);
+    const [download] = await Promise.all([page.waitForEvent("download"), page.click("#export-plan")]);
+    const plan = JSON.parse(readFileSync(await download.path(), "utf8"));
+    assert.equal(plan.type, "FeatureCollection");
+    assert.equal(plan.summary.swath_count, Number((await dataset(page)).swathCount));
+    assert.equal(
+      plan.features.filter((f) => f.properties.kind === "swath").length,
+      plan.summary.swath_count,
+      "every swath is in the file",
+    );
+    assert.equal(plan.samples, undefined, "no typed arrays in the GeoJSON");
+  });
+});
+
+test("editor: dragging a vertex of the large field keeps the page responsive; stale plans never drawn", { timeout: TIMEOUT }, async () => {
+  await withViewer(DESKTOP, async (page, base) => {
+    await page.goto(`${base}#large-250ha-10-obstacles`);
+    await planned(page);
+    await page.click('#edit-bar [data-mode="edit"]');
+    // Record every plan drawn (its edit number) and the frame times while dragging.
+    await page.evaluate(() => {
+      window.drawnSeqs = [];
+      window.previews = 0;
+      new MutationObserver(() => {
+        window.drawnSeqs.push(Number(document.body.dataset.planSeq));
+        if (document.body.dataset.planPreview === "true") window.previews++;
+      }).observe(document.body, {
+        attributeFilter: ["data-plan-seq"],
+      });
+      window.frames = [];
+      let last = performance.now();
+      const tick = (now) => {
+        window.frames.push(now - last);
+        last = now;
+        if (window.recording) requestAnimationFrame(tick);
+      };
+      window.recording = true;
+      requestAnimationFrame(tick);
+    });
+    const v = await vertexAt(page, 0, 5);
+    await page.mouse.move(v.x, v.y);
+    await page.mouse.down();
+    for (let k = 1; k <= 40; k++) {
+      await page.mouse.move(v.x + k * 3, v.y + k * 1.5);
+      await page.waitForTimeout(16);
+    }
+    await page.mouse.up();
+    await planned(page);
+    const result = await page.evaluate(() => {
+      window.recording = false;
+      return { seqs: window.drawnSeqs, previews: window.previews, frames: window.frames.slice(1), replans: window.furrow.replans };
+    });
+    const frames = [...result.frames].sort((a, b) => a - b);
+    const median = frames[Math.floor(frames.length / 2)];
+    console.log(
+      `large field vertex drag: ${result.replans.made} re-plans asked, ${result.seqs.length} plans drawn ` +
+        `(${result.previews} previews in one direction); ` +
+        `${frames.length} frames, median ${median.toFixed(1)} ms, p95 ${frames[Math.floor(frames.length * 0.95)].toFixed(1)} ms, ` +
+        `max ${frames[frames.length - 1].toFixed(1)} ms`,
+    );
+    assert.ok(result.replans.made >= 30, `every step of the drag asks for a plan (${result.replans.made})`);
+    for (let i = 1; i < result.seqs.length; i++) {
+      assert.ok(result.seqs[i] > result.seqs[i - 1], `plan ${result.seqs[i]} drawn after ${result.seqs[i - 1]}`);
+    }
+    assert.equal(result.seqs[result.seqs.length - 1], result.replans.made, "the last plan drawn is of the last edit");
+    assert.ok(frames.length > 20, "the page kept drawing frames during the drag");
+    assert.ok(result.seqs.length >= 3, `plans drawn while dragging (${result.seqs.length})`);
+    assert.equal((await dataset(page)).planPreview, "false", "the release plans in full");
+    // The plan shown is that of the final shape.
+    const shown = await planKey(page);
+    await page.evaluate(() => window.furrow.replan());
+    await planned(page);
+    assert.equal(await planKey(page), shown, "the plan drawn is that of the final shape");
+  });
+});
+
+test("editor: by touch on a phone; touch targets at least 44 px", { timeout: TIMEOUT }, async () => {
+  mkdirSync(SHOTS, { recursive: true });
+  await withViewer({ viewport: { width: 390, height: 844 }, deviceScaleFactor: 2, hasTouch: true, isMobile: true }, async (page, base) => {
+    await page.goto(base);
+    await ready(page);
+    // Every control the user touches is at least 44 px tall (buttons 44 px wide too).
+    const small = await page.evaluate(() =>
+      [...document.querySelectorAll("button, select, input:not([type=file]), summary")]
+        .filter((el) => el.offsetParent !== null && !el.closest("[hidden]"))
+        .map((el) => ({ id: el.id || el.dataset.mode || el.textContent.trim().slice(0, 20), r: el.getBoundingClientRect(), tag: el.tagName }))
+        .filter(({ r, tag }) => r.height < 44 || (tag === "BUTTON" && r.width < 44))
+        .map(({ id, r }) => `${id} ${r.width.toFixed(0)}x${r.height.toFixed(0)}`),
+    );
+    assert.deepEqual(small, [], "controls smaller than 44 px");
+    await page.click("#new-field");
+    await page.locator("#map").scrollIntoViewIfNeeded();
+    const o = await mapOrigin(page);
+    const cx = o.x + o.width / 2;
+    const cy = o.y + o.height / 2 - 30;
+    const corners = [
+      [cx - 130, cy - 100],
+      [cx + 130, cy - 110],
+      [cx + 120, cy + 100],
+      [cx - 120, cy + 90],
+    ];
+    for (const [x, y] of corners) await page.touchscreen.tap(x, y);
+    await page.touchscreen.tap(corners[0][0], corners[0][1]);
+    await planned(page);
+    const doc = await docOf(page);
+    assert.equal(doc.features[0].geometry.coordinates[0].length, 5, "a field drawn by four taps");
+    assert.ok(Number((await dataset(page)).swathCount) > 0);
+    await page.screenshot({ path: join(SHOTS, "editor-phone.png") });
+  });
+});
+
+test("editor: drive the machine along the path", { timeout: TIMEOUT }, async () => {
+  await withViewer(DESKTOP, async (page, base) => {
+    await page.goto(`${base}#rectangle`);
+    await planned(page);
+    const before = await countColour(page, "--machine", 30);
+    await page.click("#display-options summary");
+    await page.selectOption("#drive-speed", "1000");
+    await page.click("#drive");
+    assert.equal((await dataset(page)).drive, "running");
+    await page.waitForFunction(() => Number(document.body.dataset.driveS) > 60, null, { timeout: 10_000 });
+    const during = await countColour(page, "--machine", 30);
+    assert.ok(during > before + 50, `the machine is drawn (${before} -> ${during} px of its colour)`);
+    await page.click("#drive");
+    const stopped = await dataset(page);
+    assert.equal(stopped.drive, "paused");
+    const t = Number(stopped.driveS);
+    await page.waitForTimeout(300);
+    assert.equal(Number((await dataset(page)).driveS), t, "stopped means stopped");
+    // The machine's pose follows the samples.
+    const pose = await page.evaluate(() => window.furrow.driver.pose());
+    assert.ok(Number.isFinite(pose.x) && Number.isFinite(pose.headingDeg));
+    assert.ok(pose.i > 10, `${pose.i} samples driven`);
+  });
+});
+
+test("editor: screenshots of corpus fields, day and night", { timeout: TIMEOUT * 2 }, async () => {
+  const dir = join(SHOTS, "fields");
+  mkdirSync(dir, { recursive: true });
+  await withViewer(DESKTOP, async (page, base) => {
+    await page.goto(base);
+    await ready(page);
+    for (const name of ["obstacle-types", "h-shape", "underdrain", "large-250ha-10-obstacles", "c-shape-escarpment"]) {
+      await page.selectOption("#field", name);
+      await planned(page);
+      for (const theme of ["day", "night"]) {
+        const night = await page.evaluate(() => document.documentElement.dataset.theme === "night");
+        if (night !== (theme === "night")) await page.click("#theme");
+        await page.screenshot({ path: join(dir, `${name}-${theme}.png`) });
+      }
+    }
+  });
+});
