@@ -383,3 +383,150 @@ test("editor: screenshots of corpus fields, day and night", { timeout: TIMEOUT *
     }
   });
 });
+
+/** The swaths' bearings of the plan shown, folded into [0, 180). */
+const swathBearings = (page) =>
+  page.evaluate(() =>
+    window.furrow.plan.features.filter((f) => f.properties.kind === "swath").map((f) => ((f.properties.bearing_deg % 180) + 180) % 180),
+  );
+
+/** Compass bearing from lon/lat a to b, folded into [0, 180) (local flat approximation). */
+function bearingOf(a, b) {
+  const k = Math.cos(((a[1] + b[1]) / 2) * (Math.PI / 180));
+  const deg = (Math.atan2((b[0] - a[0]) * k, b[1] - a[1]) * 180) / Math.PI;
+  return ((deg % 180) + 180) % 180;
+}
+
+const foldedGap = (a, b) => {
+  const d = Math.abs(a - b) % 180;
+  return Math.min(d, 180 - d);
+};
+
+test("editor: direction along an AB line or a tapped edge; forbidden bearings; curvature rate", { timeout: TIMEOUT }, async () => {
+  await withViewer(DESKTOP, async (page, base) => {
+    await page.goto(`${base}#skew-quad`);
+    await planned(page);
+    await page.click("#more-options summary").catch(() => {});
+    if (!(await page.isVisible("#direction"))) await page.click("#more-options summary");
+    const o = await mapOrigin(page);
+    const cx = o.x + o.width / 2;
+    const cy = o.y + o.height / 2;
+
+    // AB line: choosing it starts the tool; tap A and B.
+    await page.selectOption("#direction", "line");
+    assert.equal((await dataset(page)).editMode, "abline");
+    await page.mouse.click(cx - 150, cy + 40);
+    await page.mouse.click(cx + 150, cy - 60);
+    await planned(page);
+    const line = await page.evaluate(() => window.furrow.options.referenceLine);
+    assert.ok(Array.isArray(line) && line.length === 2, "the AB line is an option");
+    const want = bearingOf(line[0], line[1]);
+    const along = await swathBearings(page);
+    assert.ok(along.length > 0 && along.every((b) => foldedGap(b, want) < 0.5), `swaths along the AB line (${want.toFixed(1)}°): ${along.slice(0, 3)}`);
+    assert.equal(await page.evaluate(() => window.furrow.plan.summary.direction.mode), "reference");
+
+    // An edge: choose the mode, tap edge 1 of the boundary.
+    await page.selectOption("#direction", "edge");
+    assert.equal((await dataset(page)).editMode, "edge");
+    const a = await vertexAt(page, 0, 1);
+    const b = await vertexAt(page, 0, 2);
+    await page.mouse.click((a.x * 2 + b.x) / 3, (a.y * 2 + b.y) / 3);
+    await planned(page);
+    assert.equal(await page.inputValue("#referenceEdge"), "1");
+    const ring = await ringOf(page, 0);
+    const edgeBearing = bearingOf(ring[1], ring[2]);
+    const alongEdge = await swathBearings(page);
+    assert.ok(alongEdge.every((x) => foldedGap(x, edgeBearing) < 0.5), `swaths along edge 1 (${edgeBearing.toFixed(1)}°)`);
+
+    // Back to the search, with the best direction's neighbourhood forbidden.
+    await page.selectOption("#direction", "search");
+    await planned(page);
+    const best = (await swathBearings(page))[0];
+    const from = Math.round(best - 20);
+    await setInput(page, "forbiddenBearings", `${from}-${from + 40}`);
+    await planned(page);
+    const allowed = (await swathBearings(page))[0];
+    assert.ok(foldedGap(allowed, best) >= 19.5, `with ${from}-${from + 40} forbidden the swaths run at ${allowed}, not ${best}`);
+    await setInput(page, "forbiddenBearings", "north");
+    await page.waitForSelector("body[data-plan-state=error]");
+    assert.equal(await page.getAttribute("#forbiddenBearings", "aria-invalid"), "true");
+    await setInput(page, "forbiddenBearings", "");
+    await planned(page);
+
+    // A curvature rate: continuous-curvature turns.
+    await setInput(page, "curvatureRate", "0.1");
+    await planned(page);
+    const forms = Object.keys(await page.evaluate(() => window.furrow.plan.summary.turn_forms));
+    assert.ok(forms.length > 0 && forms.every((f) => f.startsWith("cc-")), `turn forms ${forms}`);
+
+    // Settings persist: a reload of the same field keeps the curvature rate and the direction mode.
+    await page.reload();
+    await planned(page);
+    assert.equal(await page.inputValue("#curvatureRate"), "0.1");
+  });
+});
+
+test("editor: a file of many parcels: each shown, the one tapped planned", { timeout: TIMEOUT }, async () => {
+  await withViewer(DESKTOP, async (page, base) => {
+    await page.goto(base);
+    await ready(page);
+    const path = join(FIELDS, "real/dk_marker_2026_sample.geojson");
+    const [chooser] = await Promise.all([page.waitForEvent("filechooser"), page.click("#open-file")]);
+    await chooser.setFiles(path);
+    await page.waitForSelector("body[data-plan-state=pick]");
+    assert.equal((await dataset(page)).editMode, "parcel");
+    assert.match(await page.textContent("#status"), /100 parcels/);
+    // Tap the middle of the largest parcel.
+    const target = await page.evaluate(() => {
+      const { tool, view } = window.furrow;
+      const rings = tool.rings().filter((r) => r.ring === 0);
+      const area = (w) => Math.abs(w.reduce((s, p, i) => s + p[0] * w[(i + 1) % w.length][1] - w[(i + 1) % w.length][0] * p[1], 0)) / 2;
+      const big = rings.reduce((a, b) => (area(b.world) > area(a.world) ? b : a));
+      const xs = big.world.map((p) => p[0]);
+      const ys = big.world.map((p) => p[1]);
+      // A point inside: the middle of the widest horizontal chord through the box's middle.
+      const y = (Math.min(...ys) + Math.max(...ys)) / 2;
+      const cuts = [];
+      big.world.forEach((p, i) => {
+        const q = big.world[(i + 1) % big.world.length];
+        if ((p[1] > y) !== (q[1] > y)) cuts.push(p[0] + ((y - p[1]) * (q[0] - p[0])) / (q[1] - p[1]));
+      });
+      cuts.sort((a, b) => a - b);
+      let best = [cuts[0], cuts[1]];
+      for (let i = 0; i + 1 < cuts.length; i += 2) if (cuts[i + 1] - cuts[i] > best[1] - best[0]) best = [cuts[i], cuts[i + 1]];
+      void xs;
+      return { feature: big.feature, screen: view.toScreen([(best[0] + best[1]) / 2, y]) };
+    });
+    const o = await mapOrigin(page);
+    await page.mouse.click(o.x + target.screen[0], o.y + target.screen[1]);
+    await planned(page);
+    const doc = await docOf(page);
+    const file = JSON.parse(readFileSync(path, "utf8"));
+    assert.equal(doc.features[0].properties.role, "boundary");
+    assert.deepEqual(doc.features[0].geometry.coordinates[0], file.features[target.feature].geometry.coordinates[0]);
+    assert.ok(Number((await dataset(page)).swathCount) > 0, "the parcel is planned");
+    assert.match(await page.inputValue("#field").then(() => page.textContent("#field option:checked")), /dk_marker_2026_sample_/);
+  });
+});
+
+test("editor: no background map unless one is set; then its tiles are drawn under the field", { timeout: TIMEOUT }, async () => {
+  await withViewer(DESKTOP, async (page, base) => {
+    const png = readFileSync(join(FIELDS, "..", "..", "docs", "decomposition", "h-shape.png"));
+    const tiles = [];
+    // (On the context: the service worker's requests too.)
+    await page.context().route(`${base}tiles/**`, (route) => {
+      tiles.push(route.request().url());
+      return route.fulfill({ status: 200, contentType: "image/png", body: png });
+    });
+    await page.goto(base);
+    await ready(page);
+    assert.equal(tiles.length, 0, "nothing fetched by default");
+    assert.equal(await page.evaluate(() => window.furrow.view.drawn.tiles), 0);
+    await page.click("#display-options summary");
+    await page.fill("#tile-url", `${base}tiles/{z}/{x}/{y}.png`);
+    await page.waitForFunction(() => window.furrow.view.drawn.tiles > 0, null, { timeout: 10_000 });
+    assert.ok(tiles.length > 0 && tiles.every((u) => /tiles\/\d+\/\d+\/\d+\.png$/.test(u)), `tiles asked: ${tiles.slice(0, 2)}`);
+    await page.fill("#tile-url", "");
+    await page.waitForFunction(() => window.furrow.view.drawn.tiles === 0);
+  });
+});

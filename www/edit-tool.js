@@ -13,6 +13,7 @@
 //   entrance    tap where the machine enters the field
 //   abline      tap A, then B: the swaths run along the line from A to B
 //   edge        tap the boundary edge the swaths should run along
+//   parcel      a file of many parcels (a register's export): tap the one to plan
 //
 // Every change goes through the History (editor.js) and `onChange(doc, { final })`: `final` is
 // false while a vertex is dragged (plan it, do not keep it as a step yet) and true once it is a step.
@@ -31,7 +32,7 @@ import {
 } from "./editor.js";
 import { insidePolygon } from "./scene.js";
 
-export const MODES = ["view", "edit", "boundary", "obstacle", "prohibited", "entrance", "abline", "edge"];
+export const MODES = ["view", "edit", "boundary", "obstacle", "prohibited", "entrance", "abline", "edge", "parcel"];
 const DRAW_MODES = new Set(["boundary", "obstacle", "prohibited"]);
 const HIT_PX = 22; // half of a 44 px touch target
 const MID_MIN_PX = 40; // an edge shorter on screen than this has no insert mark
@@ -48,8 +49,9 @@ export class EditTool {
    * @param {() => void} [o.onState] mode, selection or draft changed
    * @param {(edge: number) => void} [o.onPickEdge]
    * @param {(line) => void} [o.onPickLine]
+   * @param {(feature: number) => void} [o.onPickParcel]
    */
-  constructor({ view, projection, history, onChange, onState, onPickEdge, onPickLine }) {
+  constructor({ view, projection, history, onChange, onState, onPickEdge, onPickLine, onPickParcel }) {
     this.view = view;
     this.projection = projection;
     this.history = history;
@@ -57,6 +59,7 @@ export class EditTool {
     this.onState = onState ?? (() => {});
     this.onPickEdge = onPickEdge ?? (() => {});
     this.onPickLine = onPickLine ?? (() => {});
+    this.onPickParcel = onPickParcel ?? (() => {});
     this.mode = "view";
     this.selection = null; // { feature, part, ring, vertex } (vertex null: the whole feature)
     this.draft = []; // world points of the polygon or line being drawn
@@ -280,6 +283,11 @@ export class EditTool {
         }
         return true;
       }
+      case "parcel": {
+        const parcel = this.featureAt(world);
+        if (parcel) this.onPickParcel(parcel.feature);
+        return true;
+      }
       case "edge": {
         const edge = this.boundaryEdgeAt(pt);
         if (edge != null) {
@@ -439,6 +447,7 @@ export class EditTool {
     const entrance = entranceOf(this.doc);
     if (entrance) this.drawEntrance(ctx, t, p.forward(entrance));
     if (this.mode === "edit") this.drawHandles(ctx, t);
+    if (this.mode === "parcel") this.drawParcels(ctx, t);
     if (this.drawing && this.draft.length) this.drawDraft(ctx, t);
   }
 
@@ -503,6 +512,37 @@ export class EditTool {
         ctx.stroke();
       }
     }
+  }
+
+  /** Every parcel of the file, outlined, for the user to pick one. */
+  drawParcels(ctx, t) {
+    ctx.beginPath();
+    for (const r of this.rings()) {
+      r.world.forEach((w, i) => {
+        const [x, y] = this.screenOf(w);
+        if (i === 0) ctx.moveTo(x, y);
+        else ctx.lineTo(x, y);
+      });
+      ctx.closePath();
+    }
+    ctx.fillStyle = t.field;
+    ctx.globalAlpha = 0.8;
+    ctx.fill("evenodd");
+    ctx.globalAlpha = 1;
+    ctx.lineWidth = 2;
+    ctx.strokeStyle = t.select;
+    ctx.stroke();
+  }
+
+  /** Bounds [x0, y0, x1, y1] of every ring in world metres, or null. */
+  bounds() {
+    let b = null;
+    for (const r of this.rings()) {
+      for (const [x, y] of r.world) {
+        b = b ? [Math.min(b[0], x), Math.min(b[1], y), Math.max(b[2], x), Math.max(b[3], y)] : [x, y, x, y];
+      }
+    }
+    return b;
   }
 
   drawDraft(ctx, t) {

@@ -21,10 +21,12 @@ import { Driver } from "./drive.js";
 import { EditTool } from "./edit-tool.js";
 import {
   History,
+  editableRings,
   emptyField,
   parseRanges,
   plannerInput,
   referenceLineOf,
+  roleOf,
   setProperties,
   toCollection,
 } from "./editor.js";
@@ -122,6 +124,7 @@ const tool = new EditTool({
     ui.inputs.direction.value = "line";
     settingsChanged();
   },
+  onPickParcel: (feature) => pickParcel(feature),
 });
 view.tool = tool;
 const driver = new Driver(view, { onState: () => showDriveState() });
@@ -764,6 +767,7 @@ function showPlanError(error, { local = false } = {}) {
   view.setPlan(null, { marker: place.marker });
   updateHighlights();
   if (!local) markInvalid(inputsNamedIn(error));
+  if (!local && error.code === "ambiguous_boundary" && offerParcels()) return;
   const title = local ? "Check the settings" : "Cannot plan this field";
   const text = sentence(error.message);
   const where = [];
@@ -1034,7 +1038,9 @@ function applyDoc(doc, { final }) {
   showEditState();
 }
 
-const hasPolygon = (doc) => doc.features.some((f) => ["Polygon", "MultiPolygon"].includes(f?.geometry?.type));
+function hasPolygon(doc) {
+  return doc.features.some((f) => ["Polygon", "MultiPolygon"].includes(f?.geometry?.type));
+}
 
 /** Redraws the field from the document, keeping the projection (the map does not shift while
  * a vertex is dragged) and the plan until the next one arrives. */
@@ -1163,6 +1169,7 @@ function showEditState() {
     entrance: "Tap where the machine enters the field.",
     abline: tool.draft.length ? "Now tap B." : "Tap A, then B: the swaths run along the line.",
     edge: "Tap the boundary edge the swaths should run along.",
+    parcel: `This file holds ${editableParcels(history.doc ?? emptyField())} parcels. Tap the one to plan.`,
   };
   const hint = hints[tool.mode];
   ui.editHint.hidden = !hint;
@@ -1313,4 +1320,43 @@ function showDriveState() {
   button.disabled = !driver.samples;
   document.body.dataset.drive = driver.running ? "running" : driver.t > 0 ? "paused" : "stopped";
   document.body.dataset.driveS = String(Math.round(driver.t));
+}
+
+// ---- files of many parcels ----------------------------------------------------------------------
+
+/** A file of several polygons and no roles (a parcel register's export, like the corpus's real/
+ * files): every parcel is shown, and the one tapped is planned. False if the file is not that. */
+function offerParcels() {
+  const doc = history.doc;
+  if (!doc || doc.features.some((f) => roleOf(f) != null)) return false;
+  const parcels = editableParcels(doc);
+  if (parcels < 2) return false;
+  tool.setMode("parcel");
+  view.extraBounds = tool.bounds();
+  state.fitPending = false;
+  view.fit();
+  notes.hideError();
+  ui.status.textContent = `${parcels} parcels in this file: tap the one to plan`;
+  ui.summary.replaceChildren();
+  renderWarnings([]);
+  delete document.body.dataset.swathCount;
+  setPlanState("pick");
+  return true;
+}
+
+/** How many polygon features with rings to edit `doc` has. */
+function editableParcels(doc) {
+  return new Set(editableRings(doc).map((r) => r.feature)).size;
+}
+
+/** Plans parcel `feature` of the file shown, as a field of its own (its holes are obstacles). */
+function pickParcel(feature) {
+  const f = history.doc?.features?.[feature];
+  const field = f && toCollection(f);
+  if (!field) return;
+  const p = f.properties ?? {};
+  const name = String(p.name ?? p.id ?? `${state.entry?.name ?? "parcel"} ${feature}`);
+  view.extraBounds = null;
+  tool.setMode("view");
+  loadField(field, name);
 }

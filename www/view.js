@@ -397,11 +397,11 @@ export class PlanView {
     ctx.setTransform(this.dpr, 0, 0, this.dpr, 0, 0);
     ctx.lineJoin = "round";
     ctx.lineCap = "round";
-    this.drawn = { classLabels: [], liftedStretches: 0 };
+    this.drawn = { classLabels: [], liftedStretches: 0, tiles: 0 };
 
     const field = this.field;
     const plan = this.plan;
-    if (this.background && this.projection) this.background.draw(ctx, this, this.projection);
+    if (this.background && this.projection) this.drawn.tiles = this.background.draw(ctx, this, this.projection);
     if (field?.boundary) {
       this.polygonPath(field.boundary);
       ctx.fillStyle = t.field;
