@@ -221,7 +221,8 @@ test("editor: import a corpus file and export it again equal; export the plan", 
       const path = join(FIELDS, `${name}.geojson`);
       const [chooser] = await Promise.all([page.waitForEvent("filechooser"), page.click("#open-file")]);
       await chooser.setFiles(path);
-      await page.waitForSelector("body[data-plan-state=ready], body[data-plan-state=error]");
+      // (A file of many parcels waits for one to be picked.)
+      await page.waitForSelector("body[data-plan-state=ready], body[data-plan-state=error], body[data-plan-state=pick]");
       const [download] = await Promise.all([page.waitForEvent("download"), page.click("#export-field")]);
       const text = readFileSync(await download.path(), "utf8");
       assert.deepEqual(JSON.parse(text), JSON.parse(readFileSync(path, "utf8")), `${name}: exported equal to the file`);

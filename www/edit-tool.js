@@ -392,7 +392,15 @@ export class EditTool {
   }
 
   undo() {
-    const doc = this.history.undo();
+    return this.showStep(this.history.undo());
+  }
+
+  redo() {
+    return this.showStep(this.history.redo());
+  }
+
+  /** Shows a step of the history that undo or redo went to (null: there was none). */
+  showStep(doc) {
     if (!doc) return false;
     this.selection = null;
     this.onChange(doc, { final: true });
@@ -400,13 +408,17 @@ export class EditTool {
     return true;
   }
 
-  redo() {
-    const doc = this.history.redo();
-    if (!doc) return false;
-    this.selection = null;
-    this.onChange(doc, { final: true });
-    this.onState();
-    return true;
+  /** The outlines of `rings` (of rings()) as the context's path, in screen px. */
+  ringsPath(ctx, rings) {
+    ctx.beginPath();
+    for (const r of rings) {
+      r.world.forEach((w, i) => {
+        const [x, y] = this.screenOf(w);
+        if (i === 0) ctx.moveTo(x, y);
+        else ctx.lineTo(x, y);
+      });
+      ctx.closePath();
+    }
   }
 
   /** The smallest polygon under world point `w`: an obstacle or region before the field. */
@@ -445,7 +457,7 @@ export class EditTool {
     const line = referenceLineOf(this.doc);
     if (line) this.drawLine(ctx, t, line.map(p.forward));
     const entrance = entranceOf(this.doc);
-    if (entrance) this.drawEntrance(ctx, t, p.forward(entrance));
+    if (entrance) this.drawEntrance(ctx, t, p.forward(entrance), this.selectedFeature?.role === "entrance");
     if (this.mode === "edit") this.drawHandles(ctx, t);
     if (this.mode === "parcel") this.drawParcels(ctx, t);
     if (this.drawing && this.draft.length) this.drawDraft(ctx, t);
@@ -456,16 +468,10 @@ export class EditTool {
     const rings = this.rings();
     // The selected feature's outline, thick.
     if (s) {
-      ctx.beginPath();
-      for (const r of rings) {
-        if (r.feature !== s.feature) continue;
-        r.world.forEach((w, i) => {
-          const [x, y] = this.screenOf(w);
-          if (i === 0) ctx.moveTo(x, y);
-          else ctx.lineTo(x, y);
-        });
-        ctx.closePath();
-      }
+      this.ringsPath(
+        ctx,
+        rings.filter((r) => r.feature === s.feature),
+      );
       ctx.lineWidth = 5;
       ctx.strokeStyle = t.select;
       ctx.stroke();
@@ -516,15 +522,7 @@ export class EditTool {
 
   /** Every parcel of the file, outlined, for the user to pick one. */
   drawParcels(ctx, t) {
-    ctx.beginPath();
-    for (const r of this.rings()) {
-      r.world.forEach((w, i) => {
-        const [x, y] = this.screenOf(w);
-        if (i === 0) ctx.moveTo(x, y);
-        else ctx.lineTo(x, y);
-      });
-      ctx.closePath();
-    }
+    this.ringsPath(ctx, this.rings());
     ctx.fillStyle = t.field;
     ctx.globalAlpha = 0.8;
     ctx.fill("evenodd");
@@ -572,8 +570,15 @@ export class EditTool {
   }
 
   /** The entrance: a disc with an arrow into the field. */
-  drawEntrance(ctx, t, w) {
+  drawEntrance(ctx, t, w, selected) {
     const [x, y] = this.screenOf(w);
+    if (selected) {
+      ctx.beginPath();
+      ctx.arc(x, y, 16, 0, 2 * Math.PI);
+      ctx.lineWidth = 4;
+      ctx.strokeStyle = t.select;
+      ctx.stroke();
+    }
     ctx.beginPath();
     ctx.arc(x, y, 11, 0, 2 * Math.PI);
     ctx.fillStyle = t.entrance;

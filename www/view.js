@@ -120,7 +120,7 @@ export class PlanView {
   setField(field, { fit = true, keepPlan = false } = {}) {
     this.field = field;
     if (keepPlan) {
-      this.draw();
+      this.requestDraw(); // a drag moves the field many times a frame: one draw per frame
       return;
     }
     this.plan = null;
