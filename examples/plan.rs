@@ -10,13 +10,20 @@
 //! new option is a new flag without any change to this file. `FIELD` may be `-` for standard
 //! input. The plan (GeoJSON) goes to standard output unless `--out` names a file.
 //!
+//! With `--from LON,LAT --heading DEG --to LON,LAT` it prints, instead of the plan, the shortest
+//! way along the plan's tracks from there to the nearest point of the boundary lane to `--to`
+//! (repeat `--to` for several exits; the nearest wins): a GeoJSON Feature with its `length_m`.
+//! `--turning tracks|heading|on-the-spot` says how the machine may turn (default `tracks`: only
+//! tracks as driven; see the README).
+//!
 //! Exit status: 0 with a plan; 2 when the input or an option is invalid, with one line of JSON
 //! `{"code": ..., "message": ...}` on standard error; 1 when a file cannot be read or written.
 
 #![allow(clippy::result_large_err)] // the error path of a command-line tool
 
 use furrow::options::OPTION_DOCS;
-use furrow::{plan_geojson, PlanError, PlanOptions};
+use furrow::tracks::{PlanTracks, Turning};
+use furrow::{plan_geojson, ErrorCode, PlanError, PlanOptions};
 use serde_json::{Map, Value};
 use std::io::{Read, Write};
 use std::process::ExitCode;
@@ -56,6 +63,15 @@ struct Command {
     out: Option<String>,
     pretty: bool,
     summary_only: bool,
+    path: Option<PathQuery>,
+}
+
+/// A shortest-path question (`--from`, `--heading`, `--to`, `--turning`).
+struct PathQuery {
+    from: [f64; 2],
+    heading_deg: f64,
+    to: Vec<[f64; 2]>,
+    turning: Turning,
 }
 
 fn run(args: &[String]) -> Result<(), Failure> {
@@ -73,6 +89,15 @@ fn run(args: &[String]) -> Result<(), Failure> {
         })?;
     let text = read_input(&command.field)?;
     let plan = plan_geojson(&text, &options).map_err(Failure::Invalid)?;
+    if let Some(q) = &command.path {
+        let tracks = PlanTracks::from_plan(&plan);
+        let path = tracks
+            .shortest_path(q.from, q.heading_deg, &q.to, q.turning)
+            .map_err(Failure::Invalid)?;
+        let mut out = to_json(&tracks.to_feature(&path, q.turning), command.pretty);
+        out.push('\n');
+        return write_out(&command.out, &out);
+    }
     let geojson = plan.to_geojson();
     let mut out = if command.summary_only {
         to_json(&geojson.summary, command.pretty)
@@ -80,15 +105,34 @@ fn run(args: &[String]) -> Result<(), Failure> {
         to_json(&geojson, command.pretty)
     };
     out.push('\n');
-    match &command.out {
-        Some(path) => std::fs::write(path, out)
+    write_out(&command.out, &out)
+}
+
+/// Writes `text` to the file `out` names, or to standard output.
+fn write_out(out: &Option<String>, text: &str) -> Result<(), Failure> {
+    match out {
+        Some(path) => std::fs::write(path, text)
             .map_err(|e| Failure::Io(format!("cannot write {path}: {e}")))?,
         None => std::io::stdout()
             .lock()
-            .write_all(out.as_bytes())
+            .write_all(text.as_bytes())
             .map_err(|e| Failure::Io(format!("cannot write the plan: {e}")))?,
     }
     Ok(())
+}
+
+/// `LON,LAT` (or `x,y` in metres) as a position.
+fn position(flag: &str, text: Option<String>) -> Result<[f64; 2], Failure> {
+    let text = text.ok_or_else(|| Failure::Usage(format!("--{flag} needs LON,LAT")))?;
+    let parts: Vec<f64> = text
+        .split(',')
+        .map(|p| p.trim().parse::<f64>())
+        .collect::<Result<_, _>>()
+        .map_err(|_| Failure::Usage(format!("--{flag} {text}: not LON,LAT")))?;
+    match parts[..] {
+        [x, y] if x.is_finite() && y.is_finite() => Ok([x, y]),
+        _ => Err(Failure::Usage(format!("--{flag} {text}: not LON,LAT"))),
+    }
 }
 
 fn parse_args(args: &[String]) -> Result<Command, Failure> {
@@ -96,6 +140,7 @@ fn parse_args(args: &[String]) -> Result<Command, Failure> {
     let mut options = Map::new();
     let mut out = None;
     let (mut pretty, mut summary_only) = (false, false);
+    let (mut from, mut heading, mut to, mut turning) = (None, None, Vec::new(), None);
     let mut i = 0;
     while i < args.len() {
         let arg = &args[i];
@@ -123,6 +168,29 @@ fn parse_args(args: &[String]) -> Result<Command, Failure> {
             "out" => out = Some(value.ok_or_else(|| Failure::Usage("--out needs a path".into()))?),
             "pretty" => pretty = true,
             "summary" => summary_only = true,
+            "from" => from = Some(position("from", value)?),
+            "to" => to.push(position("to", value)?),
+            "heading" => {
+                let v = value.ok_or_else(|| Failure::Usage("--heading needs degrees".into()))?;
+                heading = Some(
+                    v.trim()
+                        .parse::<f64>()
+                        .ok()
+                        .filter(|h| h.is_finite())
+                        .ok_or_else(|| {
+                            Failure::Usage(format!("--heading {v}: not a number of degrees"))
+                        })?,
+                );
+            }
+            "turning" => {
+                let v = value.unwrap_or_default();
+                turning = Some(Turning::parse(&v).ok_or_else(|| {
+                    Failure::Invalid(PlanError::new(
+                        ErrorCode::InvalidOption,
+                        format!("--turning {v}: expected tracks, heading or on-the-spot"),
+                    ))
+                })?);
+            }
             _ => {
                 let v = value.map_or(Value::Bool(true), |v| flag_value(&v));
                 options.insert(camel_case(name), v);
@@ -130,12 +198,39 @@ fn parse_args(args: &[String]) -> Result<Command, Failure> {
         }
     }
     let field = field.ok_or_else(|| Failure::Usage("no field given".into()))?;
+    let path = match (from, to.is_empty()) {
+        (None, true) if heading.is_none() && turning.is_none() => None,
+        (Some(from), false) => {
+            let turning = turning.unwrap_or_default();
+            let heading_deg = match (heading, turning) {
+                (Some(h), _) => h,
+                (None, Turning::OnTheSpot) => 0.0,
+                (None, _) => {
+                    return Err(Failure::Usage(
+                        "--heading is needed unless --turning on-the-spot".into(),
+                    ))
+                }
+            };
+            Some(PathQuery {
+                from,
+                heading_deg,
+                to,
+                turning,
+            })
+        }
+        _ => {
+            return Err(Failure::Usage(
+                "a shortest path needs --from LON,LAT and --to LON,LAT (and --heading DEG)".into(),
+            ))
+        }
+    };
     Ok(Command {
         field,
         options,
         out,
         pretty,
         summary_only,
+        path,
     })
 }
 
@@ -255,6 +350,22 @@ fn print_help() {
         "  --{:<22} {:<13} print only the plan's summary",
         "summary", ""
     );
+    println!(
+        "\nShortest path along the plan's tracks (prints a GeoJSON Feature instead of the plan):"
+    );
+    println!(
+        "  --{:<22} {:<13} where the machine is",
+        "from", "<lon,lat>"
+    );
+    println!(
+        "  --{:<22} {:<13} where it faces, compass degrees",
+        "heading", "<deg>"
+    );
+    println!(
+        "  --{:<22} {:<13} an exit on the boundary lane (repeat for several)",
+        "to", "<lon,lat>"
+    );
+    println!("  --{:<22} {:<13} tracks (as driven, default), heading (no turning on the spot) or on-the-spot", "turning", "<name>");
     println!("\nExit status: 0 planned; 2 invalid input or option (one JSON line on stderr); 1 file error.");
 }
 

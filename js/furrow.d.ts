@@ -19,8 +19,11 @@ export type {
   Plan,
   ErrorCode,
   FurrowError,
+  Turning,
+  TrackPathOptions,
+  TrackPathFeature,
   InitInput,
   InitOutput,
   SyncInitInput,
 } from "./furrow_wasm.js";
-export { plan, defaultOptions, version, initSync, default } from "./furrow_wasm.js";
+export { plan, defaultOptions, version, shortestPath, TrackGraph, initSync, default } from "./furrow_wasm.js";

@@ -13,26 +13,50 @@ export const initSync = core.initSync;
 
 function guarded(name) {
   const fn = core[name];
-  return function (...args) {
-    try {
-      return fn(...args);
-    } catch (e) {
-      if (!(e instanceof WebAssembly.RuntimeError)) throw e;
-      // The instance is in an unknown state after a trap: start a fresh one.
-      core.__wbg_reset_state();
-      const error = new Error(
-        `the planner failed inside (${e.message}) and was restarted; please report this with the field and options`,
-        { cause: e },
-      );
-      error.name = "FurrowError";
-      error.code = "internal";
-      throw error;
-    }
-  };
+  return (...args) => guardedCall(() => fn(...args));
+}
+
+/** Runs `call`; a trap of the instance becomes a FurrowError and a fresh instance. */
+function guardedCall(call) {
+  try {
+    return call();
+  } catch (e) {
+    if (!(e instanceof WebAssembly.RuntimeError)) throw e;
+    // The instance is in an unknown state after a trap: start a fresh one.
+    core.__wbg_reset_state();
+    const error = new Error(
+      `the planner failed inside (${e.message}) and was restarted; please report this with the field and options`,
+      { cause: e },
+    );
+    error.name = "FurrowError";
+    error.code = "internal";
+    throw error;
+  }
 }
 
 /** Plans a field: see furrow.d.ts. */
 export const plan = guarded("plan");
+/** The shortest path along a plan's tracks: see furrow.d.ts. */
+export const shortestPath = guarded("shortestPath");
+
+/** The tracks of a plan, for many shortest paths: see furrow.d.ts. */
+export class TrackGraph {
+  constructor(plan, options) {
+    this.inner = guardedCall(() => new core.TrackGraph(plan, options));
+  }
+  shortestPath(position, heading, target, options) {
+    return guardedCall(() => this.inner.shortestPath(position, heading, target, options));
+  }
+  get trackCount() {
+    return this.inner.trackCount;
+  }
+  get junctionCount() {
+    return this.inner.junctionCount;
+  }
+  free() {
+    this.inner.free();
+  }
+}
 /** The default value of every option. */
 export const defaultOptions = guarded("defaultOptions");
 /** The planner's version. */

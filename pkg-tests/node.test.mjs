@@ -163,3 +163,50 @@ test("a panic inside the planner is reported and the planner recovers", () => {
   assert.equal(after.features.length, before.features.length);
   for (let i = 0; i < 20; i++) furrow.plan(field);
 });
+
+test("shortest paths along the tracks: TrackGraph and shortestPath", () => {
+  const field = readField("large-250ha-10-obstacles.geojson");
+  const result = furrow.plan(field, { width: 24, headlandPasses: 2, turnRadius: 9 });
+  const tracks = new furrow.TrackGraph(result);
+  assert.ok(tracks.trackCount > 100 && tracks.junctionCount > 100, `${tracks.trackCount} tracks`);
+  // From the middle of a swath facing its way, to the field's first vertex.
+  const swath = result.features.find((f) => f.properties.kind === "swath" && f.properties.length_m > 200);
+  const [a, b] = [swath.geometry.coordinates[0], swath.geometry.coordinates.at(-1)];
+  const middle = [(a[0] + b[0]) / 2, (a[1] + b[1]) / 2];
+  const exit = field.features[0].geometry.coordinates[0][0];
+  const lengths = {};
+  for (const turning of ["on-the-spot", "heading", "tracks"]) {
+    let path;
+    try {
+      path = tracks.shortestPath(middle, swath.properties.bearing_deg, exit, { turning });
+    } catch (e) {
+      assert.equal(e.code, "no_path", `${turning}: ${e.message}`);
+      continue;
+    }
+    assert.equal(path.type, "Feature");
+    assert.equal(path.properties.turning, turning);
+    assert.ok(path.geometry.coordinates.length >= 2);
+    assert.ok(path.properties.start_offset_m < 0.01, "the start is on a track");
+    lengths[turning] = path.properties.length_m;
+  }
+  assert.ok(lengths["on-the-spot"] > 0 && lengths["on-the-spot"] <= lengths.heading, JSON.stringify(lengths));
+  if (lengths.tracks) assert.ok(lengths.heading <= lengths.tracks);
+  // The one-call form, and several exits: the nearest wins.
+  const one = furrow.shortestPath(result, middle, swath.properties.bearing_deg, [exit, middle], { turning: "on-the-spot" });
+  assert.ok(one.properties.length_m <= lengths["on-the-spot"]);
+  // Errors are FurrowErrors with codes.
+  const code = (f) => {
+    try {
+      f();
+    } catch (e) {
+      assert.equal(e.name, "FurrowError");
+      return e.code;
+    }
+    return null;
+  };
+  assert.equal(code(() => tracks.shortestPath([middle[0] + 0.1, middle[1]], 0, exit)), "off_tracks");
+  assert.equal(code(() => tracks.shortestPath(middle, 0, exit, { turning: "sideways" })), "invalid_option");
+  assert.equal(code(() => tracks.shortestPath("here", 0, exit)), "invalid_option");
+  assert.equal(code(() => new furrow.TrackGraph({ type: "FeatureCollection" })), "invalid_geojson");
+  tracks.free();
+});

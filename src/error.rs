@@ -55,6 +55,11 @@ pub enum ErrorCode {
     /// The field's coordinates look like [latitude, longitude]: as given the field lies in the
     /// sea, swapped it lies on land.
     CoordinatesSwapped,
+    /// A shortest path along the tracks: the machine's position is too far from every track.
+    OffTracks,
+    /// A shortest path along the tracks: no way along them reaches the target with the turning
+    /// allowed.
+    NoPath,
     /// A failure inside the planner that input should never cause; please report it.
     Internal,
 }
@@ -82,6 +87,8 @@ impl ErrorCode {
         ErrorCode::NoAllowedDirection,
         ErrorCode::BearingForbidden,
         ErrorCode::CoordinatesSwapped,
+        ErrorCode::OffTracks,
+        ErrorCode::NoPath,
         ErrorCode::Internal,
     ];
 
@@ -108,6 +115,8 @@ impl ErrorCode {
             ErrorCode::NoAllowedDirection => "no_allowed_direction",
             ErrorCode::BearingForbidden => "bearing_forbidden",
             ErrorCode::CoordinatesSwapped => "coordinates_swapped",
+            ErrorCode::OffTracks => "off_tracks",
+            ErrorCode::NoPath => "no_path",
             ErrorCode::Internal => "internal",
         }
     }

@@ -169,3 +169,96 @@ fn a_missing_file_exits_1() {
     let e: serde_json::Value = serde_json::from_slice(&out.stderr).expect("JSON line");
     assert_eq!(e["code"], "io_error");
 }
+
+#[test]
+fn prints_the_shortest_path_along_the_tracks() {
+    // The rectangle's corner (24.05, 60.25); from a point inside, facing north.
+    let args = |turning: &str| {
+        run(&[
+            &field("rectangle.geojson"),
+            "--width",
+            "6",
+            "--headland-passes",
+            "2",
+            "--turn-radius",
+            "8",
+            "--from",
+            "24.0515,60.2508",
+            "--heading",
+            "0",
+            "--to",
+            "24.05,60.25",
+            "--turning",
+            turning,
+        ])
+    };
+    let mut lengths = Vec::new();
+    for turning in ["on-the-spot", "heading", "tracks"] {
+        let out = args(turning);
+        assert!(
+            out.status.success(),
+            "{turning}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let path: serde_json::Value = serde_json::from_slice(&out.stdout).expect("a Feature");
+        assert_eq!(path["type"], "Feature");
+        assert_eq!(path["geometry"]["type"], "LineString");
+        assert_eq!(path["properties"]["turning"], turning);
+        let length = path["properties"]["length_m"].as_f64().expect("length_m");
+        let coords = path["geometry"]["coordinates"]
+            .as_array()
+            .expect("coordinates");
+        let last = coords
+            .last()
+            .and_then(|c| c.as_array())
+            .expect("a position");
+        // It ends on the boundary lane, near the corner (the lane runs w/2 inside the edge).
+        let (lon, lat) = (
+            last[0].as_f64().unwrap_or(0.0),
+            last[1].as_f64().unwrap_or(0.0),
+        );
+        assert!(
+            (lon - 24.05).abs() < 1e-4 && (lat - 60.25).abs() < 1e-4,
+            "{lon}, {lat}"
+        );
+        lengths.push(length);
+    }
+    assert!(
+        lengths[0] <= lengths[1] && lengths[1] <= lengths[2],
+        "{lengths:?}"
+    );
+    // Errors: a start far from the tracks, an unknown turning, a missing --to.
+    let out = run(&[
+        &field("rectangle.geojson"),
+        "--from",
+        "24.2,60.5",
+        "--heading",
+        "0",
+        "--to",
+        "24.05,60.25",
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("\"off_tracks\""));
+    let out = run(&[
+        &field("rectangle.geojson"),
+        "--from",
+        "24.0515,60.2508",
+        "--heading",
+        "0",
+        "--to",
+        "24.05,60.25",
+        "--turning",
+        "sideways",
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("\"invalid_option\""));
+    let out = run(&[
+        &field("rectangle.geojson"),
+        "--from",
+        "24.0515,60.2508",
+        "--heading",
+        "0",
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("\"usage\""));
+}
