@@ -531,3 +531,43 @@ test("editor: no background map unless one is set; then its tiles are drawn unde
     await page.waitForFunction(() => window.furrow.view.drawn.tiles === 0);
   });
 });
+
+test("editor: the way out along the tracks, from a tapped place and heading to a tapped exit", { timeout: TIMEOUT }, async () => {
+  await withViewer(DESKTOP, async (page, base) => {
+    await page.goto(`${base}#obstacles-2`);
+    await planned(page);
+    const before = await countColour(page, "--way", 30);
+    await page.click('#edit-bar [data-mode="way"]');
+    assert.match(await page.textContent("#edit-hint"), /where the machine is/);
+    const o = await mapOrigin(page);
+    // The middle of a swath, facing its end; the exit near the field's south-west corner.
+    const [at, ahead, exit] = await page.evaluate(() => {
+      const sw = window.furrow.plan.features.filter((f) => f.properties.kind === "swath")[10];
+      const [a, b] = [sw.geometry.coordinates[0], sw.geometry.coordinates.at(-1)];
+      const { projection: p, view: v } = window.furrow;
+      const corner = window.furrow.document.features[0].geometry.coordinates[0][0];
+      return [v.toScreen(p.forward([(a[0] + b[0]) / 2, (a[1] + b[1]) / 2])), v.toScreen(p.forward(b)), v.toScreen(p.forward(corner))];
+    });
+    await page.mouse.click(o.x + at[0], o.y + at[1]);
+    assert.match(await page.textContent("#edit-hint"), /faces/);
+    await page.mouse.click(o.x + ahead[0], o.y + ahead[1]);
+    assert.equal((await dataset(page)).way, "exit");
+    await page.mouse.click(o.x + exit[0], o.y + exit[1]);
+    await page.waitForSelector("body[data-way=ready]");
+    const length = Number((await dataset(page)).wayLength);
+    assert.ok(length > 100, `way out ${length} m`);
+    assert.match(await page.textContent("#edit-hint"), /Way out: [\d,.]+ m/);
+    const drawn = await countColour(page, "--way", 30);
+    assert.ok(drawn > before + 300, `the way is drawn (${before} -> ${drawn} px)`);
+    // The same answer as the package gives for the plan shown.
+    const path = await page.evaluate(() => window.furrow.way.path);
+    assert.equal(path.properties.turning, "heading");
+    assert.ok(path.geometry.coordinates.length >= 2);
+    // Turning on the spot is never longer; the way follows a change of the option.
+    await page.click("#display-options summary");
+    await page.selectOption("#way-turning", "on-the-spot");
+    await page.waitForFunction(() => window.furrow.way.path?.properties.turning === "on-the-spot");
+    assert.ok(Number((await dataset(page)).wayLength) <= length + 1e-6);
+    await page.screenshot({ path: join(SHOTS, "editor-way-out.png") });
+  });
+});

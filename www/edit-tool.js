@@ -14,6 +14,7 @@
 //   abline      tap A, then B: the swaths run along the line from A to B
 //   edge        tap the boundary edge the swaths should run along
 //   parcel      a file of many parcels (a register's export): tap the one to plan
+//   way         the way out along the tracks: taps go to `onWayTap` (main.js asks the planner)
 //
 // Every change goes through the History (editor.js) and `onChange(doc, { final })`: `final` is
 // false while a vertex is dragged (plan it, do not keep it as a step yet) and true once it is a step.
@@ -32,7 +33,7 @@ import {
 } from "./editor.js";
 import { insidePolygon } from "./scene.js";
 
-export const MODES = ["view", "edit", "boundary", "obstacle", "prohibited", "entrance", "abline", "edge", "parcel"];
+export const MODES = ["view", "edit", "boundary", "obstacle", "prohibited", "entrance", "abline", "edge", "parcel", "way"];
 const DRAW_MODES = new Set(["boundary", "obstacle", "prohibited"]);
 const HIT_PX = 22; // half of a 44 px touch target
 const MID_MIN_PX = 40; // an edge shorter on screen than this has no insert mark
@@ -50,8 +51,9 @@ export class EditTool {
    * @param {(edge: number) => void} [o.onPickEdge]
    * @param {(line) => void} [o.onPickLine]
    * @param {(feature: number) => void} [o.onPickParcel]
+   * @param {(world: number[]) => void} [o.onWayTap]
    */
-  constructor({ view, projection, history, onChange, onState, onPickEdge, onPickLine, onPickParcel }) {
+  constructor({ view, projection, history, onChange, onState, onPickEdge, onPickLine, onPickParcel, onWayTap }) {
     this.view = view;
     this.projection = projection;
     this.history = history;
@@ -60,6 +62,7 @@ export class EditTool {
     this.onPickEdge = onPickEdge ?? (() => {});
     this.onPickLine = onPickLine ?? (() => {});
     this.onPickParcel = onPickParcel ?? (() => {});
+    this.onWayTap = onWayTap ?? (() => {});
     this.mode = "view";
     this.selection = null; // { feature, part, ring, vertex } (vertex null: the whole feature)
     this.draft = []; // world points of the polygon or line being drawn
@@ -283,6 +286,9 @@ export class EditTool {
         }
         return true;
       }
+      case "way":
+        this.onWayTap(world);
+        return true;
       case "parcel": {
         const parcel = this.featureAt(world);
         if (parcel) this.onPickParcel(parcel.feature);

@@ -8,6 +8,9 @@
 //   result.error  ({ code, message, feature?, ring?, vertex?, coordinate? }), or
 //   result.stale  (true: a newer call came before this one started; it never ran)
 //
+//   const { path, error } = await runPath([lon, lat], headingDeg, [lon, lat], { turning });
+//   the shortest way along the last plan's tracks (a GeoJSON Feature), see the package's TrackGraph
+//
 // The newest call wins: while one plan runs, calls wait in a queue of one, and each new call
 // replaces the one waiting (which resolves as stale). Dragging a vertex thus plans the newest
 // shape as soon as the planner is free, never a backlog of old ones.
@@ -19,6 +22,9 @@ let inPage = null; // the wasm module's plan function, when planning in the page
 let nextId = 0;
 let running = null; // the call the planner is working on
 let waiting = null; // the newest call not yet started
+let lastPlan = null; // in the page: the last plan made, for its tracks
+let inPageTracks = null; // in the page: the module's TrackGraph class, and the graph of lastPlan
+const pathCalls = new Map(); // id -> resolve, for the ways asked of the worker
 
 /** Starts the planner once; resolves to `{ version, worker }` (worker: whether it runs in one). */
 export function initPlanner() {
@@ -46,7 +52,12 @@ function startWorker() {
       if (data.failed) return fail(new Error(data.failed));
       worker = w;
       w.onerror = (e) => finish({ id: running?.id, error: { code: "internal", message: String(e?.message ?? e) }, ms: 0 });
-      w.onmessage = (e) => finish(e.data);
+      w.onmessage = (e) => {
+        const resolve = pathCalls.get(e.data?.id);
+        if (!resolve) return finish(e.data);
+        pathCalls.delete(e.data.id);
+        resolve({ ...e.data });
+      };
       resolve({ version: data.version, worker: true });
     };
   });
@@ -56,6 +67,7 @@ async function startInPage() {
   const module = await import("./pkg/furrow.js");
   await module.default();
   inPage = module.plan;
+  inPageTracks = { TrackGraph: module.TrackGraph, graph: null };
   return { version: module.version(), worker: false };
 }
 
@@ -90,11 +102,42 @@ function pump() {
   setTimeout(() => {
     const t0 = performance.now();
     try {
-      finish({ id: call.id, plan: inPage(call.field, call.options), ms: performance.now() - t0 });
+      const plan = inPage(call.field, call.options);
+      lastPlan = plan;
+      inPageTracks.graph?.free();
+      inPageTracks.graph = null;
+      finish({ id: call.id, plan, ms: performance.now() - t0 });
     } catch (e) {
       finish({ id: call.id, error: plainError(e), ms: performance.now() - t0 });
     }
   }, 0);
+}
+
+/**
+ * The shortest way along the last plan's tracks (see TrackGraph.shortestPath in the package):
+ * resolves to `{ path }` (a GeoJSON Feature) or `{ error }`, with `ms`; never rejects.
+ */
+export function runPath(position, heading, target, options) {
+  return initPlanner().then(
+    () =>
+      new Promise((resolve) => {
+        const id = ++nextId;
+        const t0 = performance.now();
+        if (worker) {
+          pathCalls.set(id, (data) => resolve({ ...data, ms: performance.now() - t0 }));
+          worker.postMessage({ id, path: { position, heading, target, options } });
+          return;
+        }
+        try {
+          if (!lastPlan) throw Object.assign(new Error("there is no plan to find a way along"), { code: "no_path" });
+          inPageTracks.graph ??= new inPageTracks.TrackGraph(lastPlan, options);
+          resolve({ id, path: inPageTracks.graph.shortestPath(position, heading, target, options), ms: performance.now() - t0 });
+        } catch (e) {
+          resolve({ id, error: plainError(e), ms: performance.now() - t0 });
+        }
+      }),
+    (e) => ({ error: plainError(e), ms: 0 }),
+  );
 }
 
 function finish(data) {

@@ -44,6 +44,7 @@ export const THEME_VARS = {
   entrance: ["--entrance", "#1e9e3a"],
   reference: ["--reference", "#7a3fb0"],
   machine: ["--machine", "#ff5a00"],
+  way: ["--way", "#00a6c8"],
 };
 
 const BLOCK_KEYS = ["block1", "block2", "block3", "block4", "block5", "block6"];

@@ -1,8 +1,10 @@
 // The planner in a Web Worker: the page stays responsive while a large field plans. Messages in:
-// `{ id, field, options }`; out: `{ id, plan, ms }` or `{ id, error, ms }` (the sampled path's
-// typed arrays are transferred, not copied), and `{ id: 0, version }` once the module is ready
-// (or `{ id: 0, failed }` if it cannot load).
-import init, { plan, version } from "./pkg/furrow.js";
+// `{ id, field, options }` plans; `{ id, path: { position, heading, target, options } }` asks
+// for the shortest way along the last plan's tracks (its track graph built once per plan). Out:
+// `{ id, plan, ms }`, `{ id, path, ms }` or `{ id, error, ms }` (the sampled path's typed arrays
+// are transferred, not copied), and `{ id: 0, version }` once the module is ready (or
+// `{ id: 0, failed }` if it cannot load).
+import init, { plan, version, TrackGraph } from "./pkg/furrow.js";
 import { plainError } from "./errors.js";
 
 const ready = init().then(
@@ -10,12 +12,25 @@ const ready = init().then(
   (e) => self.postMessage({ id: 0, failed: String(e?.message ?? e) }),
 );
 
+let lastPlan = null; // the last plan made: its features, for its tracks
+let tracks = null; // the track graph of lastPlan, made on the first path asked
+
 self.onmessage = async (event) => {
-  const { id, field, options } = event.data ?? {};
+  const { id, field, options, path } = event.data ?? {};
   await ready;
   const t0 = performance.now();
   try {
+    if (path) {
+      if (!lastPlan) throw Object.assign(new Error("there is no plan to find a way along"), { code: "no_path" });
+      tracks ??= new TrackGraph(lastPlan, path.options);
+      const result = tracks.shortestPath(path.position, path.heading, path.target, path.options);
+      self.postMessage({ id, path: result, ms: performance.now() - t0 });
+      return;
+    }
     const result = plan(field, options);
+    tracks?.free();
+    tracks = null;
+    lastPlan = { type: "FeatureCollection", features: result.features };
     const transfer = result.samples ? Object.values(result.samples).map((a) => a.buffer) : [];
     self.postMessage({ id, plan: result, ms: performance.now() - t0 }, transfer);
   } catch (e) {

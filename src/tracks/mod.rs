@@ -4,7 +4,9 @@
 //!
 //! - [`lanes`]: the plan's working lanes, swaths and headland passes;
 //! - [`graph`]: the track graph, every drivable line of the plan and where they meet;
-//! - [`search`]: shortest paths over it under three ways of turning.
+//! - [`search`]: shortest paths over it under three ways of turning;
+//! - [`lcamod`]: the paper's own method (LCAmod with restarts, Algorithm 1), for comparison;
+//! - [`geojson`]: the same in the API's terms (input coordinates, compass degrees, GeoJSON).
 //!
 //! ```
 //! use furrow::{plan_geojson, PlanOptions};
@@ -30,6 +32,7 @@
 
 pub mod geojson;
 pub mod graph;
+pub mod lcamod;
 pub mod search;
 
 pub use geojson::PlanTracks;
