@@ -35,7 +35,7 @@ test("package.json describes the package", () => {
 
 test("TypeScript definitions declare the API and its types", () => {
   const entry = readFileSync(new URL("furrow.d.ts", pkgUrl), "utf8");
-  for (const name of ["plan", "defaultOptions", "version", "initSync", "default", "Plan", "PlanOptions", "FurrowError"]) {
+  for (const name of ["plan", "defaultOptions", "version", "initSync", "default", "Plan", "PlanOptions", "FurrowError", "TrackGraph", "shortestPath", "TrackPathFeature", "Turning"]) {
     assert.match(entry, new RegExp(`\\b${name}\\b`), `furrow.d.ts re-exports ${name}`);
   }
   const dts = readFileSync(new URL("furrow_wasm.d.ts", pkgUrl), "utf8");

@@ -3,7 +3,7 @@
 //! (`plan` as JavaScript calls it, errors as JavaScript sees them).
 #![cfg(target_arch = "wasm32")]
 
-use furrow::bindings::{default_options, plan_js, version};
+use furrow::bindings::{default_options, plan_js, shortest_path_js, version, TrackGraphJs};
 use furrow::{plan_geojson, PlanOptions};
 use js_sys::{Reflect, JSON};
 use wasm_bindgen::{JsCast, JsValue};
@@ -149,4 +149,38 @@ fn defaults_and_version() {
     assert_eq!(get(&d, "headlandPasses").as_f64(), Some(2.0));
     assert!(get(&d, "bearing").is_null());
     assert_eq!(version(), env!("CARGO_PKG_VERSION"));
+}
+
+#[wasm_bindgen_test]
+fn js_api_finds_the_way_along_the_tracks() {
+    let field = JSON::parse(FIELDS[16].1).expect("rectangle is JSON");
+    let options =
+        JSON::parse(r#"{"width": 6, "headlandPasses": 2, "turnRadius": 8}"#).expect("JSON");
+    let plan = plan_js(field, options).expect("plans");
+    let tracks = TrackGraphJs::new(plan.clone(), JsValue::UNDEFINED).expect("tracks");
+    assert!(tracks.track_count() > 10 && tracks.junction_count() > 10);
+    let from = JSON::parse("[24.0515, 60.2508]").expect("JSON");
+    let to = JSON::parse("[24.05, 60.25]").expect("JSON");
+    let heading_mode = JSON::parse(r#"{"turning": "heading"}"#).expect("JSON");
+    let way = tracks
+        .shortest_path(from.clone(), 0.0, to.clone(), heading_mode.clone())
+        .expect("a way");
+    assert_eq!(get(&way, "type"), "Feature");
+    let length = get(&get(&way, "properties"), "length_m")
+        .as_f64()
+        .expect("length_m");
+    assert!(length > 50.0, "{length}");
+    // The one-call form gives the same; a bad turning is an Error with a code.
+    let again =
+        shortest_path_js(plan.clone(), from.clone(), 0.0, to.clone(), heading_mode).expect("a way");
+    assert_eq!(
+        get(&get(&again, "properties"), "length_m").as_f64(),
+        Some(length)
+    );
+    let bad = JSON::parse(r#"{"turning": "sideways"}"#).expect("JSON");
+    let e = tracks
+        .shortest_path(from, 0.0, to, bad)
+        .map(|_| ())
+        .expect_err("refused");
+    assert_eq!(get(&e, "code"), "invalid_option");
 }
