@@ -129,7 +129,8 @@ pub struct Stretch {
     pub track: usize,
     /// Distance along it where the stretch starts, metres.
     pub from: f64,
-    /// Where it ends (less than `from` when driven against the track).
+    /// Where it ends: less than `from` when driven against the track; on a closed track it may
+    /// pass the track's length or zero (`to - from` is the way travelled).
     pub to: f64,
 }
 
@@ -456,7 +457,7 @@ impl<'a> Search<'a> {
             let next = self.next_node(start.track, start.at, dir, false);
             let limit = next.map_or(f64::INFINITY, |n| n.1);
             if let Some((d, k)) = self.target_ahead(start.track, start.at, dir, limit) {
-                let stretch = stretch(start.track, start.at, d, dir, g.tracks());
+                let stretch = stretch(start.track, start.at, d, dir);
                 if best.is_none_or(|b| d < b.0) {
                     best = Some((d, k, None, stretch, turned));
                 }
@@ -467,7 +468,7 @@ impl<'a> Search<'a> {
                     cost[idx(s)] = d;
                     came[idx(s)] = Some(Came {
                         from: None,
-                        stretch: stretch(start.track, start.at, d, dir, g.tracks()),
+                        stretch: stretch(start.track, start.at, d, dir),
                         turned,
                     });
                     let estimate = d + if bounded {
@@ -528,7 +529,7 @@ impl<'a> Search<'a> {
                                 total,
                                 k,
                                 Some(state),
-                                stretch(there.track, there.at, d, e, g.tracks()),
+                                stretch(there.track, there.at, d, e),
                                 turned,
                             ));
                         }
@@ -540,7 +541,7 @@ impl<'a> Search<'a> {
                         cost[idx(s)] = total;
                         came[idx(s)] = Some(Came {
                             from: Some(state),
-                            stretch: stretch(there.track, there.at, d, e, g.tracks()),
+                            stretch: stretch(there.track, there.at, d, e),
                             turned,
                         });
                         open.push(Open {
@@ -588,35 +589,13 @@ impl<'a> Search<'a> {
     }
 }
 
-/// The stretch of `d` metres from `at` on track `t` in direction `dir`.
-fn stretch(t: usize, at: f64, d: f64, dir: usize, tracks: &[Track]) -> Stretch {
-    let to = if dir == 0 { at + d } else { at - d };
-    let len = tracks[t].length();
-    let to = if tracks[t].closed {
-        to.rem_euclid(len.max(1e-12))
-    } else {
-        to
-    };
-    // A closed track wraps: keep the travelled sign in `to` by unwrapping below.
+/// The stretch of `d` metres from `at` on track `t` in direction `dir`. On a closed track `to`
+/// may pass its length (or zero): `to - from` is the way travelled.
+fn stretch(t: usize, at: f64, d: f64, dir: usize) -> Stretch {
     Stretch {
         track: t,
         from: at,
-        to: if tracks[t].closed {
-            unwrap(at, to, dir, len)
-        } else {
-            to
-        },
-    }
-}
-
-/// On a closed track, `to` expressed so that `to - from` has the sign of travel.
-fn unwrap(from: f64, to: f64, dir: usize, len: f64) -> f64 {
-    if dir == 0 && to < from - 1e-12 {
-        to + len
-    } else if dir == 1 && to > from + 1e-12 {
-        to - len
-    } else {
-        to
+        to: if dir == 0 { at + d } else { at - d },
     }
 }
 
@@ -645,16 +624,13 @@ fn path_points(tracks: &[Track], stretches: &[Stretch]) -> Vec<Coord> {
         // The track's own points between.
         let (lo, hi) = (s.from.min(s.to), s.from.max(s.to));
         let mut inner: Vec<f64> = Vec::new();
-        let laps = if t.closed { [-len, 0.0, len] } else { [0.0; 3] };
+        let laps: &[f64] = if t.closed { &[-len, 0.0, len] } else { &[0.0] };
         for &a in &t.at {
             for lap in laps {
                 let v = a + lap;
                 if v > lo + 1e-9 && v < hi - 1e-9 {
                     inner.push(v);
                 }
-            }
-            if !t.closed {
-                continue;
             }
         }
         inner.sort_by(f64::total_cmp);
