@@ -364,6 +364,26 @@ export interface PlanSummary {
   estimated_time_s: number;
   /** Time the planner took, milliseconds. */
   planning_ms: number;
+  /** Of which each stage, milliseconds (summed over the decompositions compared). */
+  stages_ms: StageTimes;
+}
+
+/** Time spent in each stage of planning, milliseconds. */
+export interface StageTimes {
+  /** Reading the input and checking it, simplifying the boundary. */
+  validation: number;
+  /** Choosing the swath direction. */
+  direction: number;
+  /** Obstacle classes and headland passes. */
+  headlands: number;
+  /** Cutting the inner field into blocks and laying the swaths. */
+  decomposition: number;
+  /** The order of work. */
+  route: number;
+  /** The drivable path. */
+  path: number;
+  /** The figures of the plan. */
+  metrics: number;
 }
 
 /** How the direction of a plan was chosen. */

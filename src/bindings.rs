@@ -42,8 +42,10 @@ pub fn plan_js(field: JsValue, options: JsValue) -> Result<JsValue, JsValue> {
     .map_err(|e| to_js_error(&e))?;
     let (field, warnings) =
         validate::field_from_input(input, options.coordinates).map_err(|e| to_js_error(&e))?;
+    let read_ms = started.elapsed().as_secs_f64() * 1000.0;
     let mut plan = plan_stages(field, &options, warnings).map_err(|e| to_js_error(&e))?;
     plan.summary.planning_ms = started.elapsed().as_secs_f64() * 1000.0;
+    plan.summary.stages_ms.validation += read_ms;
     // One string and the engine's JSON.parse are much cheaper than building the object
     // property by property across the boundary.
     let text = serde_json::to_string(&plan.to_geojson()).map_err(|e| {

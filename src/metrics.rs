@@ -98,6 +98,42 @@ pub struct Summary {
     pub estimated_time_s: f64,
     /// Time the planner took, milliseconds.
     pub planning_ms: f64,
+    /// Of which each stage, milliseconds (summed over the decompositions compared).
+    pub stages_ms: StageTimes,
+}
+
+/// Time spent in each stage of planning, milliseconds. The decomposition, route, path and
+/// metrics stages run once per decomposition compared (auto compares up to five plans), and
+/// their times are the sums.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize)]
+pub struct StageTimes {
+    /// Reading the input and checking it, simplifying the boundary.
+    pub validation: f64,
+    /// Choosing the swath direction (the search, or the direction given).
+    pub direction: f64,
+    /// Obstacle classes and headland passes.
+    pub headlands: f64,
+    /// Cutting the inner field into blocks and laying the swaths.
+    pub decomposition: f64,
+    /// The order of work: swath patterns, block sequence, connections.
+    pub route: f64,
+    /// The drivable path: turns, rounded corners, joins.
+    pub path: f64,
+    /// The figures of the plan.
+    pub metrics: f64,
+}
+
+impl StageTimes {
+    /// Adds the milliseconds since `since` to the stage `stage` picks, and restarts the clock.
+    pub fn lap(
+        &mut self,
+        since: &mut web_time::Instant,
+        stage: impl FnOnce(&mut StageTimes) -> &mut f64,
+    ) {
+        let now = web_time::Instant::now();
+        *stage(self) += (now - *since).as_secs_f64() * 1000.0;
+        *since = now;
+    }
 }
 
 /// What the direction stage measured: how the direction was chosen, the objectives of the
@@ -345,5 +381,6 @@ pub fn summarise(
         },
         estimated_time_s: working_time_s + non_working_time_s,
         planning_ms: 0.0,
+        stages_ms: StageTimes::default(),
     }
 }

@@ -26,7 +26,7 @@ use crate::headland::edges::{passes_per_edge, EdgeRule};
 use crate::headland::{build, HeadlandSettings, Headlands};
 use crate::metrics::{
     summarise, DecompositionCandidate, DecompositionReport, DirectionFigures, DirectionReport,
-    Summary,
+    StageTimes, Summary,
 };
 use crate::objective::{measure_all, Machine, Objective, ObjectiveValues};
 use crate::obstacles::{classify, ClassSettings, ObstacleClass, ObstacleClasses};
@@ -165,8 +165,10 @@ pub fn plan_geojson(text: &str, options: &PlanOptions) -> Result<Plan, PlanError
     let started = Instant::now();
     options.validate()?;
     let (field, warnings) = Field::from_geojson_str_in(text, options.coordinates)?;
+    let read_ms = started.elapsed().as_secs_f64() * 1000.0;
     let mut plan = plan_stages(field, options, warnings)?;
     plan.summary.planning_ms = started.elapsed().as_secs_f64() * 1000.0;
+    plan.summary.stages_ms.validation += read_ms;
     Ok(plan)
 }
 
@@ -176,9 +178,12 @@ pub(crate) fn plan_stages(
     options: &PlanOptions,
     mut warnings: Vec<Warning>,
 ) -> Result<Plan, PlanError> {
+    let mut times = StageTimes::default();
+    let mut clock = Instant::now();
     options.validate()?;
     let width = options.width;
     warnings.extend(field.simplify(tolerance_for_width(width)));
+    times.lap(&mut clock, |t| &mut t.validation);
     let forbidden = &options.forbidden_bearings_deg;
     let objective = options.objective.objective();
     let search = AreaSearch {
@@ -259,6 +264,7 @@ pub(crate) fn plan_stages(
             best.bearing
         }
     };
+    times.lap(&mut clock, |t| &mut t.direction);
     let edge_passes = passes_per_edge(
         &field.boundary,
         &field.drawn_boundary,
@@ -301,6 +307,7 @@ pub(crate) fn plan_stages(
             "option `decomposition` is `split-merge`, whose blocks each have their own direction and may end on any edge; it needs the headland all around the field (`headlandMode: constant`, no `edgePasses` with fewer passes)",
         ));
     }
+    times.lap(&mut clock, |t| &mut t.headlands);
     let methods: Vec<Decomposition> = match options.decomposition {
         Decomposition::Auto if mode == DirectionMode::Search && all_around => vec![
             Decomposition::None,
@@ -322,6 +329,7 @@ pub(crate) fn plan_stages(
     } else {
         None
     };
+    times.lap(&mut clock, |t| &mut t.decomposition);
     let prepared = Prepared {
         mode,
         bearing,
@@ -336,6 +344,7 @@ pub(crate) fn plan_stages(
             DrivingArea::new(&field.boundary, &obstacles)
         },
     };
+    times.lap(&mut clock, |t| &mut t.path);
     let mut candidates: Vec<Worked> = Vec::with_capacity(methods.len());
     for &m in &methods {
         if m == Decomposition::SplitMerge {
@@ -344,7 +353,7 @@ pub(crate) fn plan_stages(
             let mut best: Option<Worked> = None;
             let mut evaluations = 0;
             for seed in SPLIT_MERGE_SEEDS {
-                let w = work(&field, options, &obstacles, &prepared, m, seed)?;
+                let w = work(&field, options, &obstacles, &prepared, m, seed, &mut times)?;
                 evaluations += w.decomposition_evaluations;
                 if best
                     .as_ref()
@@ -365,9 +374,11 @@ pub(crate) fn plan_stages(
                 &prepared,
                 m,
                 Seed::Cells,
+                &mut times,
             )?);
         }
     }
+    let mut clock = Instant::now();
     let mut best = 0;
     for (i, c) in candidates.iter().enumerate() {
         // Near-ties go to the simpler decomposition (the candidates come simplest first).
@@ -408,6 +419,8 @@ pub(crate) fn plan_stages(
         candidates: figures,
     };
     summary.route.pattern = options.pattern;
+    times.lap(&mut clock, |t| &mut t.metrics);
+    summary.stages_ms = times;
     warnings.extend(own_warnings);
     Ok(Plan {
         field,
@@ -707,7 +720,9 @@ fn work(
     prep: &Prepared,
     method: Decomposition,
     seed: Seed,
+    times: &mut StageTimes,
 ) -> Result<Worked, PlanError> {
+    let mut clock = Instant::now();
     let width = options.width;
     let forbidden = &options.forbidden_bearings_deg;
     let mut headlands = prep.headlands.clone();
@@ -850,12 +865,14 @@ fn work(
         ));
     }
     let blocks = cluster_swaths(&swaths);
+    times.lap(&mut clock, |t| &mut t.decomposition);
     let route = plan_route(
         &swaths,
         &blocks,
         &headlands.passes,
         &route_settings(options, field),
     );
+    times.lap(&mut clock, |t| &mut t.route);
     let straight = route.all_connections().filter(|c| c.straight).count();
     if straight > 0 {
         warnings.push(Warning::new(
@@ -878,6 +895,7 @@ fn work(
         &options.vehicle(),
         Some(&prep.area),
     );
+    times.lap(&mut clock, |t| &mut t.path);
     if let Some(w) = turns_leaving(&path, options) {
         warnings.push(w);
     }
@@ -905,6 +923,7 @@ fn work(
             machine,
         },
     );
+    times.lap(&mut clock, |t| &mut t.metrics);
     Ok(Worked {
         method,
         headlands,
