@@ -33,7 +33,7 @@ const node = byName(wasm.node);
 const chromium = byName(wasm.chromium);
 const stage = byName(stages);
 const f = (v, d = 1) => (Number.isFinite(v) ? v.toFixed(d) : "–");
-const kb = (b) => `${Math.round(b / 1024)} KB`;
+const kb = (b) => `${Math.round(b / 1000)} KB`;
 
 const rows = quality.map((q) => {
   const name = q.field;
