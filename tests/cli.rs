@@ -230,37 +230,33 @@ fn prints_the_shortest_path_along_the_tracks() {
     }
     assert!(lengths.windows(2).all(|w| w[0] <= w[1]), "{lengths:?}");
     // Errors: a start far from the tracks, an unknown turning, a missing --to.
-    let out = run(&[
-        &field("rectangle.geojson"),
-        "--from",
-        "24.2,60.5",
-        "--heading",
-        "0",
-        "--to",
-        "24.05,60.25",
-    ]);
-    assert_eq!(out.status.code(), Some(2));
-    assert!(String::from_utf8_lossy(&out.stderr).contains("\"off_tracks\""));
-    let out = run(&[
-        &field("rectangle.geojson"),
-        "--from",
-        "24.0515,60.2508",
-        "--heading",
-        "0",
-        "--to",
-        "24.05,60.25",
-        "--turning",
-        "sideways",
-    ]);
-    assert_eq!(out.status.code(), Some(2));
-    assert!(String::from_utf8_lossy(&out.stderr).contains("\"invalid_option\""));
-    let out = run(&[
-        &field("rectangle.geojson"),
-        "--from",
-        "24.0515,60.2508",
-        "--heading",
-        "0",
-    ]);
-    assert_eq!(out.status.code(), Some(2));
-    assert!(String::from_utf8_lossy(&out.stderr).contains("\"usage\""));
+    let refused = |extra: &[&str], code: &str| {
+        let rect = field("rectangle.geojson");
+        let mut args = vec![rect.as_str()];
+        args.extend_from_slice(extra);
+        let out = run(&args);
+        assert_eq!(out.status.code(), Some(2), "{extra:?}");
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(
+            stderr.contains(&format!("\"{code}\"")),
+            "{extra:?}: {stderr}"
+        );
+    };
+    let from = ["--from", "24.0515,60.2508", "--heading", "0"];
+    refused(
+        &[
+            "--from",
+            "24.2,60.5",
+            "--heading",
+            "0",
+            "--to",
+            "24.05,60.25",
+        ],
+        "off_tracks",
+    );
+    refused(
+        &[&from[..], &["--to", "24.05,60.25", "--turning", "sideways"]].concat(),
+        "invalid_option",
+    );
+    refused(&from, "usage");
 }
