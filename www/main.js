@@ -679,6 +679,8 @@ async function replan(how) {
   if (result.error) showPlanError(result.error);
   else showPlan(result.plan, options, result.ms);
   if (preview && !result.error) ui.status.textContent = "Preview while dragging (one direction); the full plan on release";
+  // The way out follows the plan (not its previews: each would build the tracks' graph again).
+  if (!preview && !result.error && way.exit && way.heading != null) findWay();
   if (fit) view.fit();
   // Newer edits are on their way: not ready until the newest is drawn.
   if (seq !== state.replanSeq) setPlanState("planning");
@@ -711,7 +713,6 @@ function showPlan(plan, options, callMs) {
   document.body.dataset.planMs = String(s.planning_ms ?? callMs);
   showEditState();
   setPlanState("ready");
-  if (way.exit && way.heading != null) findWay(); // the way out follows the plan
 }
 
 /** The warning notes: a badge on the outline of each feature that warnings name; several on one
