@@ -31,7 +31,7 @@ import {
   toCollection,
 } from "./editor.js";
 import { ERROR_HINTS, MapNotes, featureLabel, sentence } from "./notes.js";
-import { initPlanner, runPath, runPlan } from "./planner.js";
+import { initPlanner, runPlan } from "./planner.js";
 import {
   fieldParts,
   fieldScene,
@@ -44,6 +44,7 @@ import {
   projectionFor,
 } from "./scene.js";
 import { PlanView } from "./view.js";
+import { WayOut } from "./way.js";
 
 const DEFAULT_FIELD = "obstacle-types";
 const OPTION_INPUTS = [
@@ -125,16 +126,23 @@ const tool = new EditTool({
     settingsChanged();
   },
   onPickParcel: (feature) => pickParcel(feature),
-  onWayTap: (world) => wayTap(world),
+  onWayTap: (world) => way.tap(world),
 });
 view.tool = tool;
 const driver = new Driver(view, { onState: () => showDriveState() });
+// The way out along the tracks: where the machine is and faces, the exit, and the way found.
+const way = new WayOut({
+  view,
+  projection: () => state.projection,
+  entrance: () => (history.doc ? plannerInput(history.doc).entrance : null),
+  turning: () => $("way-turning").value,
+  ready: () => Boolean(state.plan),
+  onState: () => showWayState(),
+});
 view.overlay = (ctx, theme) => {
   driver.draw(ctx, theme);
-  drawWay(ctx, theme);
+  way.draw(ctx, theme, tool.mode === "way");
 };
-// The way out along the tracks: where the machine is and faces, the exit, and the path found.
-const way = { step: "position", position: null, heading: null, exit: null, path: null, error: null, seq: 0 };
 let dial = null; // the prohibited region's bearing dial, made when first shown
 let tiles = null; // the background map, made when a URL is set
 notes.onOpenChange = () => updateHighlights();
@@ -310,7 +318,7 @@ function bindControls() {
   });
   $("way-turning").addEventListener("input", () => {
     saveSettings();
-    findWay();
+    way.find();
   });
   ui.tileUrl.addEventListener("input", () => {
     saveSettings();
@@ -680,7 +688,7 @@ async function replan(how) {
   else showPlan(result.plan, options, result.ms);
   if (preview && !result.error) ui.status.textContent = "Preview while dragging (one direction); the full plan on release";
   // The way out follows the plan (not its previews: each would build the tracks' graph again).
-  if (!preview && !result.error && way.exit && way.heading != null) findWay();
+  if (!preview && !result.error && way.asked) way.find();
   if (fit) view.fit();
   // Newer edits are on their way: not ready until the newest is drawn.
   if (seq !== state.replanSeq) setPlanState("planning");
@@ -1011,7 +1019,7 @@ function formatNumber(v, digits) {
 /** A new field is shown: its document starts the edit history (not editable: no document). */
 function startEditing(field, { edited = false } = {}) {
   state.fieldId++;
-  Object.assign(way, { step: "position", position: null, heading: null, exit: null, path: null, error: null });
+  way.reset();
   showWayState();
   const doc = toCollection(field);
   history.reset(doc);
@@ -1184,7 +1192,7 @@ function showEditState() {
     entrance: "Tap where the machine enters the field.",
     abline: tool.draft.length ? "Now tap B." : "Tap A, then B: the swaths run along the line.",
     edge: "Tap the boundary edge the swaths should run along.",
-    way: wayHint(),
+    way: way.hint((v) => formatNumber(v, 0)),
     parcel: `This file holds ${editableParcels(history.doc ?? emptyField())} parcels. Tap the one to plan.`,
   };
   const hint = hints[tool.mode];
@@ -1377,130 +1385,14 @@ function pickParcel(feature) {
   loadField(field, name);
 }
 
-// ---- the way out along the tracks (Plessen & Bemporad) ---------------------------------------------
-
-function wayHint() {
-  if (way.step === "heading") return "Tap where the machine faces.";
-  if (way.step === "exit") return "Tap the exit on the field's edge.";
-  const found = way.path
-    ? `Way out: ${formatNumber(way.path.properties.length_m, 0)} m. `
-    : way.error
-      ? `${sentence(way.error.message)} `
-      : "";
-  const then = way.exit ? "then where it faces" : "then where it faces, then the exit on the field's edge";
-  return `${found}Tap where the machine is, ${then}.`;
-}
-
-/** A tap in the way-out mode: the machine's place, then where it faces, then (once) the exit;
- * the field's entrance is the exit when there is one. */
-function wayTap(world) {
-  const p = state.projection;
-  if (!p) return;
-  const lonLat = p.inverse(world);
-  if (way.step === "position") {
-    way.position = lonLat;
-    way.heading = null;
-    way.path = null;
-    way.error = null;
-    way.step = "heading";
-  } else if (way.step === "heading") {
-    const from = p.forward(way.position);
-    const dx = world[0] - from[0];
-    const dy = world[1] - from[1];
-    if (Math.hypot(dx, dy) * view.scale < 6) return; // the same place: tap a little way off
-    way.heading = ((Math.atan2(dx, dy) * 180) / Math.PI + 360) % 360;
-    const entrance = history.doc ? plannerInput(history.doc).entrance : null;
-    way.exit ??= entrance;
-    way.step = way.exit ? "position" : "exit";
-    if (way.exit) findWay();
-  } else {
-    way.exit = lonLat;
-    way.step = "position";
-    findWay();
-  }
-  showWayState();
-  view.draw();
-}
-
-/** Asks the planner for the way out; the newest question wins. */
-async function findWay() {
-  if (!way.position || way.heading == null || !way.exit || !state.plan) return;
-  const seq = ++way.seq;
-  document.body.dataset.way = "planning";
-  const turning = $("way-turning").value;
-  const result = await runPath(way.position, way.heading, way.exit, { turning });
-  if (seq !== way.seq) return;
-  way.path = result.path ?? null;
-  way.error = result.error ?? null;
-  way.ms = result.ms;
-  showWayState();
-  view.draw();
-}
-
+/** The way out's state for tests (`body[data-way]`, `data-way-length`) and its hint. */
 function showWayState() {
   const body = document.body.dataset;
-  if (way.path) {
-    body.way = "ready";
-    body.wayLength = String(way.path.properties.length_m);
-  } else {
-    body.way = way.error ? "error" : way.step;
-    delete body.wayLength;
-  }
+  body.way = way.state;
+  if (way.path) body.wayLength = String(way.path.properties.length_m);
+  else delete body.wayLength;
   if (tool.mode === "way") {
     ui.editHint.hidden = false;
-    ui.editHint.textContent = wayHint();
-  }
-}
-
-/** The way out over the map: the path, the machine facing its heading, and the exit. */
-function drawWay(ctx, t) {
-  const p = state.projection;
-  if (!p || (tool.mode !== "way" && !way.path)) return;
-  const screen = (lonLat) => view.toScreen(p.forward(lonLat));
-  if (way.path) {
-    const pts = way.path.geometry.coordinates.map(screen);
-    ctx.beginPath();
-    pts.forEach(([x, y], i) => (i === 0 ? ctx.moveTo(x, y) : ctx.lineTo(x, y)));
-    ctx.setLineDash([]);
-    ctx.lineWidth = 8;
-    ctx.strokeStyle = t.labelFill;
-    ctx.stroke();
-    ctx.lineWidth = 4.5;
-    ctx.strokeStyle = t.way;
-    ctx.stroke();
-  }
-  if (way.exit) {
-    const [x, y] = screen(way.exit);
-    ctx.beginPath();
-    ctx.rect(x - 8, y - 8, 16, 16);
-    ctx.fillStyle = t.way;
-    ctx.fill();
-    ctx.lineWidth = 2.5;
-    ctx.strokeStyle = t.labelFill;
-    ctx.stroke();
-  }
-  if (way.position) {
-    const [x, y] = screen(way.position);
-    ctx.beginPath();
-    ctx.arc(x, y, 8, 0, 2 * Math.PI);
-    ctx.fillStyle = t.way;
-    ctx.fill();
-    ctx.lineWidth = 2.5;
-    ctx.strokeStyle = t.labelFill;
-    ctx.stroke();
-    if (way.heading != null) {
-      const a = (way.heading * Math.PI) / 180;
-      const [fx, fy] = [Math.sin(a), -Math.cos(a)];
-      ctx.beginPath();
-      ctx.moveTo(x + fx * 26, y + fy * 26);
-      ctx.lineTo(x + fx * 10 - fy * 7, y + fy * 10 + fx * 7);
-      ctx.lineTo(x + fx * 10 + fy * 7, y + fy * 10 - fx * 7);
-      ctx.closePath();
-      ctx.fillStyle = t.way;
-      ctx.fill();
-      ctx.lineWidth = 2;
-      ctx.strokeStyle = t.labelFill;
-      ctx.stroke();
-    }
+    ui.editHint.textContent = way.hint((v) => formatNumber(v, 0));
   }
 }
