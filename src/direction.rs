@@ -704,6 +704,8 @@ mod tests {
             name: None,
             feature: 0,
             frame: Frame::Metric,
+            entrance: None,
+            reference_line: None,
         };
         let b = choose_bearing(&f, DirectionRule::Fixed { bearing_deg: 270.0 }, &[]).unwrap();
         assert!((b.to_degrees() - 90.0).abs() < 1e-9);
@@ -727,6 +729,8 @@ mod tests {
             name: None,
             feature: 0,
             frame: Frame::Metric,
+            entrance: None,
+            reference_line: None,
         };
         let forbidden = [
             BearingRange {

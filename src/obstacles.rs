@@ -246,6 +246,8 @@ mod tests {
             name: None,
             feature: 0,
             frame: Frame::Metric,
+            entrance: None,
+            reference_line: None,
         }
     }
 

@@ -553,6 +553,29 @@ impl PlanOptions {
         Ok(options)
     }
 
+    /// These options with what the field itself gives and the options leave out: its entrance,
+    /// and its AB line when no bearing, reference or other direction is asked for. `None` when
+    /// the field adds nothing.
+    pub fn with_field(&self, field: &crate::field::Field) -> Option<PlanOptions> {
+        let entrance = self.entrance.is_none() && field.entrance.is_some();
+        let line = field.reference_line.is_some()
+            && self.reference_line.is_none()
+            && self.reference_edge.is_none()
+            && self.bearing_deg.is_none()
+            && matches!(self.direction, None | Some(DirectionMode::Reference));
+        if !entrance && !line {
+            return None;
+        }
+        let mut out = self.clone();
+        if entrance {
+            out.entrance = field.entrance;
+        }
+        if line {
+            out.reference_line = field.reference_line;
+        }
+        Some(out)
+    }
+
     /// The direction mode, given or following from the options given.
     pub fn direction_mode(&self) -> Result<DirectionMode, PlanError> {
         let invalid = |m: String| Err(PlanError::new(ErrorCode::InvalidOption, m));

@@ -181,6 +181,8 @@ pub(crate) fn plan_stages(
     let mut times = StageTimes::default();
     let mut clock = Instant::now();
     options.validate()?;
+    let with_field = options.with_field(&field);
+    let options = with_field.as_ref().unwrap_or(options);
     let width = options.width;
     warnings.extend(field.simplify(tolerance_for_width(width)));
     times.lap(&mut clock, |t| &mut t.validation);

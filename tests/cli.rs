@@ -260,3 +260,58 @@ fn prints_the_shortest_path_along_the_tracks() {
     );
     refused(&from, "usage");
 }
+
+#[test]
+fn a_field_saved_with_an_entrance_and_ab_line_plans_with_them() {
+    // As the viewer saves a field: the entrance and the AB line at the end of the features.
+    let dir = std::env::temp_dir().join(format!("furrow-cli-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let path = dir.join("saved.geojson");
+    std::fs::write(
+        &path,
+        r#"{"type":"FeatureCollection","features":[
+        {"type":"Feature","properties":{"role":"boundary"},"geometry":{"type":"Polygon","coordinates":[[[24.05,60.25],[24.056,60.25],[24.056,60.252],[24.05,60.252],[24.05,60.25]]]}},
+        {"type":"Feature","properties":{"role":"entrance"},"geometry":{"type":"Point","coordinates":[24.056,60.251]}},
+        {"type":"Feature","properties":{"role":"reference_line"},"geometry":{"type":"LineString","coordinates":[[24.05,60.25],[24.056,60.252]]}}]}"#,
+    )
+    .expect("written");
+    let file = path.display().to_string();
+    let out = run(&[&file]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let plan: serde_json::Value = serde_json::from_slice(&out.stdout).expect("a plan");
+    assert_eq!(
+        plan["summary"]["direction"]["mode"], "reference",
+        "along the AB line"
+    );
+    assert_eq!(
+        plan["warnings"].as_array().map(Vec::len),
+        Some(0),
+        "nothing ignored"
+    );
+    let first = plan["features"]
+        .as_array()
+        .and_then(|f| f.iter().find(|f| f["properties"]["sequence"] == 0))
+        .expect("the first drivable feature");
+    assert_eq!(
+        first["properties"]["kind"], "connection",
+        "from the entrance"
+    );
+    assert_eq!(
+        first["geometry"]["coordinates"][0],
+        serde_json::json!([24.056, 60.251])
+    );
+    // Options still win: a bearing given on the command line.
+    let out = run(&[&file, "--bearing", "0"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let plan: serde_json::Value = serde_json::from_slice(&out.stdout).expect("a plan");
+    assert_eq!(plan["summary"]["direction"]["mode"], "fixed");
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -3,7 +3,8 @@
 //! The reader is deliberately small and strict about structure: it streams the input through
 //! serde without an intermediate JSON tree, keeps each feature's index for error messages, and
 //! accepts positions with altitude (the third number is ignored). It knows the properties
-//! `role` (`boundary`, `obstacle`, `prohibited`), `name` and `forbidden_bearings_deg`; other
+//! `role` (`boundary`, `obstacle`, `prohibited`, and `entrance` for a Point or `reference_line`
+//! for a LineString, as the viewer saves them), `name` and `forbidden_bearings_deg`; other
 //! properties are ignored.
 
 use crate::error::{ErrorCode, PlanError};
@@ -50,6 +51,11 @@ pub struct InputFeatures {
     pub polygons: Vec<InputPolygon>,
     /// Features ignored because of an unknown role, as (feature index, role).
     pub ignored: Vec<(usize, String)>,
+    /// The first Point with `role: "entrance"`: where the machine enters the field.
+    pub entrance: Option<[f64; 2]>,
+    /// The first LineString with `role: "reference_line"` (its first and last positions): an AB
+    /// line for the swaths to run along.
+    pub reference_line: Option<[[f64; 2]; 2]>,
 }
 
 /// Parses GeoJSON text.
@@ -247,6 +253,10 @@ fn collect_feature(i: usize, f: RawObject, out: &mut InputFeatures) -> Result<()
         Some("boundary") | Some("field") => Role::Boundary,
         Some("obstacle") => Role::Obstacle,
         Some("prohibited") => Role::Prohibited,
+        Some(extra @ ("entrance" | "reference_line")) => {
+            collect_extra(i, extra, f.geometry.as_deref(), out);
+            return Ok(());
+        }
         Some(other) => {
             out.ignored.push((
                 i,
@@ -273,6 +283,59 @@ fn collect_feature(i: usize, f: RawObject, out: &mut InputFeatures) -> Result<()
             Ok(())
         }
         None => Err(invalid(i, format!("feature {i} has no geometry"))),
+    }
+}
+
+/// The entrance (a Point) or AB line (a LineString) a feature gives; anything else is ignored
+/// with the reason.
+fn collect_extra(i: usize, role: &str, geometry: Option<&RawObject>, out: &mut InputFeatures) {
+    let position = |c: &Coords| match c {
+        Coords::List(v) => match v.as_slice() {
+            [Coords::Number(x), Coords::Number(y), ..] if x.is_finite() && y.is_finite() => {
+                Some([*x, *y])
+            }
+            _ => None,
+        },
+        Coords::Number(_) => None,
+    };
+    let kind = geometry.map(|g| g.kind.as_str());
+    let coords = geometry.and_then(|g| g.coordinates.as_ref());
+    match (role, kind, coords) {
+        ("entrance", Some("Point"), Some(c)) => match position(c) {
+            Some(p) if out.entrance.is_none() => out.entrance = Some(p),
+            Some(_) => out
+                .ignored
+                .push((i, "the field has an entrance already".into())),
+            None => out.ignored.push((i, "its Point is not two numbers".into())),
+        },
+        ("reference_line", Some("LineString"), Some(Coords::List(points))) => {
+            let ends = points
+                .first()
+                .and_then(position)
+                .zip(points.last().and_then(position));
+            match ends {
+                Some((a, b)) if points.len() >= 2 && out.reference_line.is_none() => {
+                    out.reference_line = Some([a, b]);
+                }
+                Some(_) if points.len() >= 2 => out
+                    .ignored
+                    .push((i, "the field has an AB line already".into())),
+                _ => out
+                    .ignored
+                    .push((i, "its LineString needs two positions".into())),
+            }
+        }
+        _ => out.ignored.push((
+            i,
+            format!(
+                "its role \"{role}\" needs a {}",
+                if role == "entrance" {
+                    "Point"
+                } else {
+                    "LineString"
+                }
+            ),
+        )),
     }
 }
 
@@ -433,6 +496,28 @@ fn position(c: &Coords) -> Option<[f64; 2]> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn entrance_and_ab_line_features_are_read() {
+        let text = r#"{"type": "FeatureCollection", "features": [
+            {"type":"Feature","properties":{"role":"boundary"},
+             "geometry":{"type":"Polygon","coordinates":[[[0,0],[10,0],[10,10],[0,10],[0,0]]]}},
+            {"type":"Feature","properties":{"role":"entrance"},"geometry":{"type":"Point","coordinates":[10,5]}},
+            {"type":"Feature","properties":{"role":"reference_line"},
+             "geometry":{"type":"LineString","coordinates":[[0,0],[5,5],[10,10]]}},
+            {"type":"Feature","properties":{"role":"entrance"},"geometry":{"type":"Polygon","coordinates":[]}}
+        ]}"#;
+        let f = parse_str(text).expect("parses");
+        assert_eq!(f.polygons.len(), 1, "the extras are not polygons");
+        assert_eq!(f.entrance, Some([10.0, 5.0]));
+        assert_eq!(f.reference_line, Some([[0.0, 0.0], [10.0, 10.0]]));
+        assert_eq!(
+            f.ignored.len(),
+            1,
+            "an entrance that is not a Point is ignored"
+        );
+        assert!(f.ignored[0].1.contains("Point"), "{}", f.ignored[0].1);
+    }
 
     #[test]
     fn reads_a_feature_collection_with_roles() {

@@ -49,6 +49,12 @@ pub struct Field {
     pub feature: usize,
     /// How to get from the input's coordinates to metres and back.
     pub frame: Frame,
+    /// The input's entrance (a Point with `role: "entrance"`), input coordinates: used when the
+    /// options give none.
+    pub entrance: Option<[f64; 2]>,
+    /// The input's AB line (a LineString with `role: "reference_line"`), input coordinates: used
+    /// when the options give no bearing, reference or other direction.
+    pub reference_line: Option<[[f64; 2]; 2]>,
 }
 
 /// An area the machine cannot enter (a pond, a pole, a tree island).

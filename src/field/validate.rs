@@ -53,6 +53,7 @@ pub fn field_from_input(
             format!("the input has {vertices} points; the planner accepts up to {MAX_VERTICES}: simplify the outlines"),
         ));
     }
+    let (entrance, reference_line) = (input.entrance, input.reference_line);
     let (mut boundary_in, others) = choose_boundary(input.polygons, &mut warnings)?;
     boundary_in.role = Role::Boundary;
     for p in std::iter::once(&boundary_in).chain(&others) {
@@ -201,6 +202,8 @@ pub fn field_from_input(
         name: boundary_in.name.clone(),
         feature: boundary_in.feature,
         frame,
+        entrance,
+        reference_line,
     };
     Ok((field, warnings))
 }

@@ -519,6 +519,8 @@ mod tests {
             name: None,
             feature: 0,
             frame: Frame::Metric,
+            entrance: None,
+            reference_line: None,
         }
     }
 
