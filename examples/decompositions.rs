@@ -14,6 +14,7 @@ mod corpus;
 use furrow::decompose::Decomposition;
 use furrow::direction::SearchMethod;
 use furrow::{plan_geojson, Plan, PlanOptions};
+use geo::BoundingRect;
 use std::fmt::Write as _;
 
 fn plan_with(text: &str, options: &PlanOptions, d: Decomposition) -> Option<Plan> {
@@ -148,13 +149,9 @@ fn svg(name: &str, plans: &[(&str, &Plan)]) -> String {
     );
     for (k, (label, plan)) in plans.iter().enumerate() {
         let ring = plan.field.boundary.exterior();
-        let (mut x0, mut y0, mut x1, mut y1) = (f64::MAX, f64::MAX, f64::MIN, f64::MIN);
-        for c in &ring.0 {
-            x0 = x0.min(c.x);
-            y0 = y0.min(c.y);
-            x1 = x1.max(c.x);
-            y1 = y1.max(c.y);
-        }
+        let (x0, y0, x1, y1) = ring.bounding_rect().map_or((0.0, 0.0, 1.0, 1.0), |r| {
+            (r.min().x, r.min().y, r.max().x, r.max().y)
+        });
         let scale = (panel - 2.0 * pad) / (x1 - x0).max(y1 - y0).max(1.0);
         let ox = k as f64 * panel + pad + ((panel - 2.0 * pad) - (x1 - x0) * scale) / 2.0;
         let oy = title_h + pad + ((panel - 2.0 * pad) - (y1 - y0) * scale) / 2.0;

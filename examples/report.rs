@@ -38,6 +38,7 @@ mod corpus;
 use furrow::decompose::Decomposition;
 use furrow::path::SegmentKind;
 use furrow::{plan_geojson, Plan, PlanOptions};
+use geo::BoundingRect;
 use serde_json::{json, Value};
 use std::error::Error;
 use std::fmt::Write as _;
@@ -429,16 +430,9 @@ struct Canvas {
 
 impl Canvas {
     fn fit(ring: &geo::LineString) -> Canvas {
-        let (mut x0, mut y0, mut x1, mut y1) = (f64::MAX, f64::MAX, f64::MIN, f64::MIN);
-        for c in &ring.0 {
-            x0 = x0.min(c.x);
-            y0 = y0.min(c.y);
-            x1 = x1.max(c.x);
-            y1 = y1.max(c.y);
-        }
-        if x0 > x1 {
-            (x0, y0, x1, y1) = (0.0, 0.0, 1.0, 1.0);
-        }
+        let (x0, y0, x1, y1) = ring.bounding_rect().map_or((0.0, 0.0, 1.0, 1.0), |r| {
+            (r.min().x, r.min().y, r.max().x, r.max().y)
+        });
         let scale = (PICTURE_PX - 2.0 * PICTURE_PAD) / (x1 - x0).max(y1 - y0).max(1e-9);
         Canvas {
             x0,

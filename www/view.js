@@ -275,8 +275,10 @@ export class PlanView {
           return;
         }
       }
-      this.taps.set(e.pointerId, { x: p.x, y: p.y, t: performance.now(), multi: this.pointers.size > 0 });
-      for (const tap of this.taps.values()) if (this.pointers.size > 0) tap.multi = true;
+      // A second finger makes every press a pinch, not a tap.
+      const multi = this.pointers.size > 0;
+      if (multi) for (const tap of this.taps.values()) tap.multi = true;
+      this.taps.set(e.pointerId, { x: p.x, y: p.y, t: performance.now(), multi });
       this.pointers.set(e.pointerId, p);
       c.classList.add("dragging");
     });

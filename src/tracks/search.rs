@@ -199,6 +199,8 @@ struct Search<'a> {
     start: Place,
     start_offset: f64,
     targets: Vec<Place>,
+    /// Where the targets are (local metres), for the straight-line bound.
+    target_points: Vec<Coord>,
     band: Option<(Coord, f64, f64)>,
 }
 
@@ -270,12 +272,17 @@ impl<'a> Search<'a> {
                     .ok_or_else(|| PlanError::new(ErrorCode::NoPath, "the plan has no tracks"))
             })
             .collect::<Result<Vec<_>, _>>()?;
+        let target_points = targets
+            .iter()
+            .map(|t| graph.tracks()[t.track].point_at(t.at))
+            .collect();
         let mut search = Search {
             graph,
             query,
             start: Place { track, at },
             start_offset: offset,
             targets,
+            target_points,
             band: None,
         };
         if query.monotone_band && query.turning == Turning::OnTheSpot {
@@ -328,8 +335,8 @@ impl<'a> Search<'a> {
         let step = if step.is_finite() { step } else { 0.0 };
         let xs = x(self.graph.tracks()[self.start.track].point_at(self.start.at));
         let (mut lo, mut hi) = (xs, xs);
-        for t in &self.targets {
-            let xt = x(self.graph.tracks()[t.track].point_at(t.at));
+        for &t in &self.target_points {
+            let xt = x(t);
             lo = lo.min(xt);
             hi = hi.max(xt);
         }
@@ -361,12 +368,9 @@ impl<'a> Search<'a> {
     /// Straight-line distance from `p` to the nearest target: never more than any way along
     /// the tracks.
     fn bound(&self, p: Coord) -> f64 {
-        self.targets
+        self.target_points
             .iter()
-            .map(|t| {
-                let q = self.graph.tracks()[t.track].point_at(t.at);
-                (p.x - q.x).hypot(p.y - q.y)
-            })
+            .map(|q| (p.x - q.x).hypot(p.y - q.y))
             .fold(f64::INFINITY, f64::min)
     }
 
