@@ -11,7 +11,7 @@ use crate::decompose::cells::MergeRule;
 use crate::decompose::split_merge::{
     cells_at, improve, split_merge, Criterion, SplitMerge, SplitMergeSettings,
 };
-use crate::decompose::{cluster_swaths, Blocks, Decomposition};
+use crate::decompose::{cluster_swaths, BlockArea, Blocks, Decomposition};
 use crate::direction::{
     choose_bearing, edge_directions, reference_direction, search_area, search_field, search_region,
     AreaSearch, DirectionMode, DirectionRule, SearchMethod,
@@ -37,7 +37,7 @@ use crate::path::{build_path, Path};
 use crate::prohibited::{forbidding, split};
 use crate::route::{pattern::candidates, plan_route, Route, RouteSettings};
 use crate::swath::{generate_with, lifts, LinePlacement, SwathArea, SwathSettings, Swaths};
-use geo::{Area, BooleanOps, BoundingRect};
+use geo::{Area, BooleanOps, BoundingRect, Centroid};
 use web_time::Instant;
 
 /// Most swath lines times directions a direction search may sweep (about a third of a second
@@ -351,12 +351,24 @@ pub(crate) fn plan_stages(
     for &m in &methods {
         if m == Decomposition::SplitMerge {
             // The greedy selection cannot see what a block leaves behind: start it several
-            // ways and keep the plan of lowest estimated time.
+            // ways and keep the plan of lowest estimated time. A start (or a result) equal to
+            // an earlier seed's would plan the same again: it is skipped.
             let mut best: Option<Worked> = None;
             let mut evaluations = 0;
+            let mut starts: Vec<Vec<BlockSignature>> = Vec::new();
+            let mut results: Vec<Vec<BlockSignature>> = Vec::new();
             for seed in SPLIT_MERGE_SEEDS {
-                let w = work(&field, options, &obstacles, &prepared, m, seed, &mut times)?;
-                evaluations += w.decomposition_evaluations;
+                let mut clock = Instant::now();
+                let sm = decompose_seed(&field, options, &prepared, seed, &mut starts)?;
+                times.lap(&mut clock, |t| &mut t.decomposition);
+                let Some(sm) = sm else { continue };
+                evaluations += sm.evaluations;
+                let result = signatures(&sm.blocks);
+                if results.iter().any(|r| same_blocks(r, &result)) {
+                    continue;
+                }
+                results.push(result);
+                let w = work(&field, options, &obstacles, &prepared, m, Some(sm), &mut times)?;
                 if best
                     .as_ref()
                     .is_none_or(|b| w.compared_time() < b.compared_time())
@@ -375,7 +387,7 @@ pub(crate) fn plan_stages(
                 &obstacles,
                 &prepared,
                 m,
-                Seed::Cells,
+                None,
                 &mut times,
             )?);
         }
@@ -714,6 +726,98 @@ const CROSSING_PENALTY_S: f64 = 1e7;
 /// Seed of the block sequence's ant colony: the same field and options give the same route.
 const ROUTE_SEED: u64 = 0x5eed_f077;
 
+/// The split-and-merge decomposition of the inner field from `seed`; `None` when the seed's
+/// cells are those of a seed in `starts` (improving them again would give the same blocks).
+/// Cells seeds add their cells' signatures to `starts`.
+fn decompose_seed(
+    field: &Field,
+    options: &PlanOptions,
+    prep: &Prepared,
+    seed: Seed,
+    starts: &mut Vec<Vec<BlockSignature>>,
+) -> Result<Option<SplitMerge>, PlanError> {
+    let orders = route_settings(options, field).orders;
+    let settings = SplitMergeSettings {
+        width: options.width,
+        min_length: options.min_swath_length_m(),
+        machine: options.machine(),
+        method: options.search,
+        step_deg: options.search_step_deg,
+        forbidden: &options.forbidden_bearings_deg,
+        regions: &field.prohibited,
+        criterion: Criterion::default(),
+        min_end_angle: MIN_END_ANGLE_DEG.to_radians(),
+        tolerance: options.width * DECOMPOSITION_TOLERANCE,
+        orders: &orders,
+    };
+    let inner = &prep.headlands.inner;
+    let rule = match seed {
+        Seed::Greedy(substantial_share) => {
+            let criterion = Criterion {
+                substantial_share,
+                ..Criterion::default()
+            };
+            return split_merge(inner, &SplitMergeSettings { criterion, ..settings }).map(Some);
+        }
+        Seed::Cells => MergeRule::Boustrophedon,
+        Seed::OksanenCells => MergeRule::SplitMerge {
+            min_end_angle: settings.min_end_angle,
+        },
+    };
+    let (blocks, not_worked) = cells_at(inner, prep.bearing, rule, &settings);
+    let start = signatures(&blocks);
+    if starts.iter().any(|s| same_blocks(s, &start)) {
+        return Ok(None);
+    }
+    starts.push(start);
+    let (blocks, evaluations) = improve(blocks, &settings)?;
+    Ok(Some(SplitMerge {
+        blocks,
+        evaluations,
+        not_worked,
+    }))
+}
+
+/// What tells blocks apart when seeds are compared: direction, area and centroid. Two
+/// decompositions whose blocks agree in these (to rounding) are the same decomposition, with
+/// their rings perhaps starting at other corners.
+#[derive(Debug, Clone, Copy)]
+struct BlockSignature {
+    bearing: f64,
+    area_m2: f64,
+    centroid: geo::Coord,
+}
+
+fn signatures(blocks: &[BlockArea]) -> Vec<BlockSignature> {
+    blocks
+        .iter()
+        .map(|b| BlockSignature {
+            bearing: b.bearing,
+            area_m2: b.area.unsigned_area(),
+            centroid: b.area.centroid().map_or(geo::Coord::zero(), |p| p.0),
+        })
+        .collect()
+}
+
+/// Whether two decompositions have the same blocks, in any order: bearings within a
+/// microradian, areas within a millionth, centroids within a tenth of a millimetre.
+fn same_blocks(a: &[BlockSignature], b: &[BlockSignature]) -> bool {
+    if a.len() != b.len() {
+        return false;
+    }
+    let same = |x: &BlockSignature, y: &BlockSignature| {
+        let turn = (x.bearing - y.bearing).rem_euclid(std::f64::consts::PI);
+        turn.min(std::f64::consts::PI - turn) < 1e-6
+            && (x.area_m2 - y.area_m2).abs() <= 1e-6 * x.area_m2.max(1.0)
+            && (x.centroid.x - y.centroid.x).hypot(x.centroid.y - y.centroid.y) < 1e-4
+    };
+    let mut taken = vec![false; b.len()];
+    a.iter().all(|x| {
+        let found = (0..b.len()).find(|&k| !taken[k] && same(x, &b[k]));
+        found.inspect(|&k| taken[k] = true).is_some()
+    })
+}
+
 /// Decomposes the inner field, lays the swaths, and routes, paths and measures the plan.
 fn work(
     field: &Field,
@@ -721,7 +825,7 @@ fn work(
     obstacles: &ObstacleClasses,
     prep: &Prepared,
     method: Decomposition,
-    seed: Seed,
+    split: Option<SplitMerge>,
     times: &mut StageTimes,
 ) -> Result<Worked, PlanError> {
     let mut clock = Instant::now();
@@ -732,52 +836,8 @@ fn work(
     let mut evaluations = prep.evaluations;
     let mut decomposition_evaluations = 0;
     let mut block_headland_passes = 0;
-    let tolerance = width * DECOMPOSITION_TOLERANCE;
     let mut swaths;
-    if method == Decomposition::SplitMerge {
-        let orders = route_settings(options, field).orders;
-        let settings = SplitMergeSettings {
-            width,
-            min_length: options.min_swath_length_m(),
-            machine: options.machine(),
-            method: options.search,
-            step_deg: options.search_step_deg,
-            forbidden,
-            regions: &field.prohibited,
-            criterion: Criterion::default(),
-            min_end_angle: MIN_END_ANGLE_DEG.to_radians(),
-            tolerance,
-            orders: &orders,
-        };
-        let sm = match seed {
-            Seed::Greedy(substantial_share) => split_merge(
-                &headlands.inner,
-                &SplitMergeSettings {
-                    criterion: Criterion {
-                        substantial_share,
-                        ..Criterion::default()
-                    },
-                    ..settings
-                },
-            )?,
-            Seed::Cells | Seed::OksanenCells => {
-                let rule = if seed == Seed::Cells {
-                    MergeRule::Boustrophedon
-                } else {
-                    MergeRule::SplitMerge {
-                        min_end_angle: settings.min_end_angle,
-                    }
-                };
-                let (blocks, not_worked) =
-                    cells_at(&headlands.inner, prep.bearing, rule, &settings);
-                let (blocks, evaluations) = improve(blocks, &settings)?;
-                SplitMerge {
-                    blocks,
-                    evaluations,
-                    not_worked,
-                }
-            }
-        };
+    if let Some(sm) = split {
         decomposition_evaluations = sm.evaluations;
         evaluations += sm.evaluations;
         warnings.extend(
@@ -815,6 +875,7 @@ fn work(
         };
         swaths = single.main.clone();
         if method == Decomposition::Boustrophedon {
+            let tolerance = width * DECOMPOSITION_TOLERANCE;
             let cells = boustrophedon::decompose(&single.main_area, prep.bearing, tolerance);
             cluster_into_cells(&mut swaths, &cells);
         } else {
