@@ -345,6 +345,14 @@ fn connection(
     // What a join costs when choosing where to join: leaving the field costs more than any
     // detour along the line.
     let join_cost = |t: &turn::Turn| t.cost() + if t.inside || area.is_none() { 0.0 } else { 1e6 };
+    // The same, where only a cost below `limit` matters (any answer at or above it will do):
+    // a join whose cheapest form costs more is not checked against the field.
+    let join_cost_below = |a: Pose, b: Pose, limit: f64| match area {
+        Some(ar) => v
+            .turn_below(a, b, ar, limit)
+            .map_or(f64::INFINITY, |t| join_cost(&t)),
+        None => v.shortest(a, b).cost(),
+    };
     let pts: Vec<Coord> = line.map(|l| l.0.clone()).unwrap_or_default();
     let length = polyline_length(&pts);
     let direct = length < DIRECT_CONNECTION_RADII * v.turn_radius;
@@ -360,10 +368,10 @@ fn connection(
             // saves of the line.
             let half = length / 2.0;
             let start_at = from.map_or(0.0, |a| {
-                best_join(&pts, half, v, |p| join_cost(&join(a, p)), true)
+                best_join(&pts, half, v, |p, limit| join_cost_below(a, p, limit), true)
             });
             let end_at = to.map_or(0.0, |b| {
-                best_join(&pts, half, v, |p| join_cost(&join(p, b)), false)
+                best_join(&pts, half, v, |p, limit| join_cost_below(p, b, limit), false)
             });
             let middle = cut_polyline(&pts, start_at, length - end_at);
             let mut along = follow(&middle, v);
@@ -398,11 +406,12 @@ const JOIN_RADII: [f64; 6] = [0.5, 1.0, 1.5, 2.0, 3.0, 4.0];
 
 /// The distance from the line's start (`at_start`) or end at which joining it costs least:
 /// the join's length less the stretch of line it replaces, over [`JOIN_RADII`] up to `most`.
+/// `join(pose, limit)` is the cost of the join at `pose`, exact where it is below `limit`.
 fn best_join(
     pts: &[Coord],
     most: f64,
     v: &Vehicle,
-    join: impl Fn(Pose) -> f64,
+    join: impl Fn(Pose, f64) -> f64,
     at_start: bool,
 ) -> f64 {
     let length = polyline_length(pts);
@@ -412,7 +421,8 @@ fn best_join(
         let Some(p) = polyline_pose(pts, if at_start { d } else { length - d }) else {
             continue;
         };
-        let cost = join(p) - d;
+        // Only a cost below the best so far (by the margin below) is taken.
+        let cost = join(p, best.0 - 1e-9 + d) - d;
         if cost < best.0 - 1e-9 {
             best = (cost, d);
         }

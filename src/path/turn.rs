@@ -257,7 +257,23 @@ impl Vehicle {
     /// The cheapest turn from `from` to `to` that stays in `area`, or the cheapest of all
     /// (with `inside: false`) if none does.
     pub fn turn(&self, from: Pose, to: Pose, area: &Area) -> Turn {
+        self.first_inside(self.candidates(from, to), from, to, area)
+    }
+
+    /// [`Vehicle::turn`], but only if it may cost less than `limit`: `None` when even the
+    /// cheapest form, inside or not, costs `limit` or more (then no turn is checked against
+    /// the area, which is most of the work).
+    pub fn turn_below(&self, from: Pose, to: Pose, area: &Area, limit: f64) -> Option<Turn> {
         let candidates = self.candidates(from, to);
+        if candidates.first().is_some_and(|t| t.cost() >= limit) {
+            return None;
+        }
+        Some(self.first_inside(candidates, from, to, area))
+    }
+
+    /// The first of `candidates` (cheapest first) inside `area`, or the cheapest of all with
+    /// `inside: false`.
+    fn first_inside(&self, candidates: Vec<Turn>, from: Pose, to: Pose, area: &Area) -> Turn {
         let mut first: Option<Turn> = None;
         for mut t in candidates {
             if area.contains(&t.segments) {
@@ -414,13 +430,32 @@ impl Area {
     }
 
     /// Whether a run of segments that starts inside stays inside: none of its chords crosses
-    /// an edge.
+    /// an edge. The tree is asked once, for the edges near the run (each segment stays within
+    /// its length of its start); a run near no edge is inside without a chord drawn.
     pub fn contains(&self, segments: &[Segment]) -> bool {
+        let mut low = [f64::INFINITY; 2];
+        let mut high = [f64::NEG_INFINITY; 2];
+        for s in segments {
+            let (x, y, reach) = (s.start.x, s.start.y, s.length.abs());
+            low = [low[0].min(x - reach), low[1].min(y - reach)];
+            high = [high[0].max(x + reach), high[1].max(y + reach)];
+        }
+        if !(low[0] <= high[0] && low[1] <= high[1]) {
+            return true;
+        }
+        let near: Vec<&Line> = self
+            .edges
+            .locate_in_envelope_intersecting(&AABB::from_corners(low, high))
+            .map(|e| &e.0)
+            .collect();
+        if near.is_empty() {
+            return true;
+        }
         let mut previous: Option<Coord> = None;
         for s in segments {
             for p in chord_points(s) {
                 if let Some(a) = previous {
-                    if self.crosses(a, p) {
+                    if crosses_any(&near, a, p) {
                         return false;
                     }
                 }
@@ -429,15 +464,20 @@ impl Area {
         }
         true
     }
+}
 
-    /// Whether the chord from `a` to `b` crosses an edge.
-    fn crosses(&self, a: Coord, b: Coord) -> bool {
-        let envelope = AABB::from_corners([a.x, a.y], [b.x, b.y]);
-        let chord = Line::new(a, b);
-        self.edges
-            .locate_in_envelope_intersecting(&envelope)
-            .any(|e| segments_intersect(&chord, &e.0))
-    }
+/// Whether the chord from `a` to `b` crosses one of `edges`.
+fn crosses_any(edges: &[&Line], a: Coord, b: Coord) -> bool {
+    let (x0, x1) = (a.x.min(b.x), a.x.max(b.x));
+    let (y0, y1) = (a.y.min(b.y), a.y.max(b.y));
+    let chord = Line::new(a, b);
+    edges.iter().any(|e| {
+        e.start.x.max(e.end.x) >= x0
+            && e.start.x.min(e.end.x) <= x1
+            && e.start.y.max(e.end.y) >= y0
+            && e.start.y.min(e.end.y) <= y1
+            && segments_intersect(&chord, e)
+    })
 }
 
 /// Points along a segment whose chords stay within [`CHORD_TOLERANCE_M`] of it, ends included.
