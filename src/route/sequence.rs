@@ -804,7 +804,17 @@ pub fn solve_exact(problem: &SequenceProblem) -> Sequence {
                     c.start[to]
                 } else {
                     let previous = &done[before * width..(before + 1) * width];
-                    min_plus(previous, &into[to * width..(to + 1) * width])
+                    let arriving = &into[to * width..(to + 1) * width];
+                    // Only the ways of blocks in `before` are finite there.
+                    let mut least = f64::INFINITY;
+                    let mut blocks_before = before;
+                    while blocks_before != 0 {
+                        let k = blocks_before.trailing_zeros() as usize;
+                        blocks_before &= blocks_before - 1;
+                        let ways = c.ways(k);
+                        least = least.min(min_plus(&previous[ways.clone()], &arriving[ways]));
+                    }
+                    least
                 };
             }
         }
@@ -853,10 +863,15 @@ pub fn solve_exact(problem: &SequenceProblem) -> Sequence {
     c.sequence(&order, SequenceMethod::Exact)
 }
 
-/// `min over i of a[i] + b[i]`, in four lanes (the lengths are multiples of 4).
+/// `min over i of a[i] + b[i]` (equal lengths), in four lanes.
 fn min_plus(a: &[f64], b: &[f64]) -> f64 {
     let mut lanes = [f64::INFINITY; 4];
-    for (x, y) in a.chunks_exact(4).zip(b.chunks_exact(4)) {
+    let (a4, b4) = (a.chunks_exact(4), b.chunks_exact(4));
+    for (&x, &y) in a4.remainder().iter().zip(b4.remainder()) {
+        let cost = x + y;
+        lanes[0] = if cost < lanes[0] { cost } else { lanes[0] };
+    }
+    for (x, y) in a4.zip(b4) {
         for ((lane, &x), &y) in lanes.iter_mut().zip(x).zip(y) {
             let cost = x + y;
             *lane = if cost < *lane { cost } else { *lane };
