@@ -10,7 +10,10 @@ cargo build --release --target wasm32-unknown-unknown --lib
 rm -rf pkg
 # furrow_wasm.js is wasm-bindgen's module; furrow.js (js/) wraps it and recreates the instance
 # after a trap, with the reset function wasm-bindgen generates on request.
+# The name section (function names for stack traces, 125 KB) and the producers section are left
+# out of the shipped module.
 wasm-bindgen --target web --out-name furrow_wasm --experimental-reset-state-function \
+  --remove-name-section --remove-producers-section \
   --out-dir pkg target/wasm32-unknown-unknown/release/furrow.wasm
 cp js/furrow.js js/furrow.d.ts pkg/
 # Debian's wasm-opt (binaryen 108) produces a module that fails to load: never run it here.

@@ -18,6 +18,7 @@ use crate::headland::edges::drawn_edge_count;
 use crate::headland::offset::inset_coarse;
 use crate::objective::{measure, Machine, Objective, SwathStats};
 use crate::prohibited::{forbidding, split};
+use crate::sort::SharedSort;
 use crate::swath::{generate_with, LinePlacement, SwathSettings};
 use geo::{BoundingRect, Coord, LineString, MultiPolygon, Polygon, Simplify};
 use serde::{Deserialize, Serialize};
@@ -161,7 +162,7 @@ pub fn search_direction(
             }
             while step >= 1.0 {
                 let mut ranked = e.list.clone();
-                ranked.sort_by(|a, b| a.1.total_cmp(&b.1));
+                ranked.shared_sort_by(|a, b| a.1.total_cmp(&b.1));
                 step /= 2.0;
                 for &(b, _) in ranked.iter().take(3) {
                     for side in [-1.0, 1.0] {
@@ -377,7 +378,7 @@ pub fn edge_directions<'a>(
     let mut edges: Vec<(f64, f64)> = rings
         .flat_map(|r| edges_longest_first(r, tolerance_m))
         .collect();
-    edges.sort_by(|a, b| b.0.total_cmp(&a.0));
+    edges.shared_sort_by(|a, b| b.0.total_cmp(&a.0));
     let mut out: Vec<f64> = Vec::new();
     for (_, b) in edges {
         let near = |o: &f64| {
@@ -412,7 +413,7 @@ fn edges_longest_first(ring: &LineString, tolerance_m: f64) -> Vec<(f64, f64)> {
             )
         })
         .collect();
-    edges.sort_by(|a, b| b.0.total_cmp(&a.0));
+    edges.shared_sort_by(|a, b| b.0.total_cmp(&a.0));
     edges
 }
 

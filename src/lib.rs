@@ -54,6 +54,7 @@ pub mod plan;
 pub mod prohibited;
 pub mod rng;
 pub mod route;
+pub mod sort;
 pub mod swath;
 pub mod tracks;
 

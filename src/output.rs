@@ -33,6 +33,7 @@ use crate::path::turn::chord_poses;
 use crate::path::{PathSegment, SegmentKind};
 use crate::plan::Plan;
 use crate::route::RouteStep;
+use crate::sort::SharedSort;
 use geo::{Coord, LineString, Polygon};
 use serde::Serialize;
 
@@ -338,7 +339,7 @@ impl Plan {
                 [round(a, 1e-3), round(b, 1e-3)]
             })
             .collect();
-        out.sort_by(|a, b| a[0].total_cmp(&b[0]));
+        out.shared_sort_by(|a, b| a[0].total_cmp(&b[0]));
         (!out.is_empty()).then_some(out)
     }
 

@@ -368,7 +368,15 @@ pub(crate) fn plan_stages(
                     continue;
                 }
                 results.push(result);
-                let w = work(&field, options, &obstacles, &prepared, m, Some(sm), &mut times)?;
+                let w = work(
+                    &field,
+                    options,
+                    &obstacles,
+                    &prepared,
+                    m,
+                    Some(sm),
+                    &mut times,
+                )?;
                 if best
                     .as_ref()
                     .is_none_or(|b| w.compared_time() < b.compared_time())
@@ -382,13 +390,7 @@ pub(crate) fn plan_stages(
             }
         } else {
             candidates.push(work(
-                &field,
-                options,
-                &obstacles,
-                &prepared,
-                m,
-                None,
-                &mut times,
+                &field, options, &obstacles, &prepared, m, None, &mut times,
             )?);
         }
     }
@@ -757,7 +759,14 @@ fn decompose_seed(
                 substantial_share,
                 ..Criterion::default()
             };
-            return split_merge(inner, &SplitMergeSettings { criterion, ..settings }).map(Some);
+            return split_merge(
+                inner,
+                &SplitMergeSettings {
+                    criterion,
+                    ..settings
+                },
+            )
+            .map(Some);
         }
         Seed::Cells => MergeRule::Boustrophedon,
         Seed::OksanenCells => MergeRule::SplitMerge {

@@ -10,6 +10,7 @@
 
 use crate::error::{ErrorCode, PlanError};
 use crate::geometry::SweepFrame;
+use crate::sort::SharedSort;
 use geo::{Coord, Line, MultiPolygon};
 
 /// Swath-line spacing below this fraction of the width is not worth an extra, overlapping line.
@@ -188,7 +189,7 @@ pub fn lifts(swaths: &Swaths, obstacles: &[(usize, &geo::Polygon)]) -> Vec<Lift>
 
 /// Puts lifts in the order [`Swaths::lifts`] keeps them: by swath, then along it.
 pub fn sort_lifts(lifts: &mut [Lift]) {
-    lifts.sort_by(|x, y| {
+    lifts.shared_sort_by(|x, y| {
         (x.swath, x.along.0)
             .partial_cmp(&(y.swath, y.along.0))
             .unwrap_or(std::cmp::Ordering::Equal)

@@ -11,6 +11,7 @@
 
 use super::cells::{adjacency, merge, split, Cell, MergeRule, Trapezoid};
 use crate::geometry::SweepFrame;
+use crate::sort::SharedSort;
 use crate::swath::{sort_lifts, Swath, SwathArea, Swaths};
 use geo::MultiPolygon;
 
@@ -116,7 +117,7 @@ pub fn cluster_into_cells(swaths: &mut Swaths, cells: &BoustrophedonCells) {
         })
         .collect();
     // Stable: within a cell the swaths keep their line order.
-    keyed.sort_by_key(|(cell, _)| *cell);
+    keyed.shared_sort_by_key(|(cell, _)| *cell);
     let mut renumber = vec![0; swaths.swaths.len()];
     let mut areas: Vec<SwathArea> = Vec::with_capacity(cells.cells.len());
     let mut out: Vec<Swath> = Vec::with_capacity(keyed.len());

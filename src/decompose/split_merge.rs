@@ -35,6 +35,7 @@ use crate::geometry::{forbids_every_direction, BearingRange, SweepFrame};
 use crate::objective::{turn_length, Machine};
 use crate::prohibited::{constraints_in, forbidding, split};
 use crate::route::pattern::SwathOrder;
+use crate::sort::SharedSort;
 use crate::swath::line_offsets;
 use geo::{Area, BooleanOps, BoundingRect, Intersects, MultiPolygon, Polygon};
 use std::f64::consts::PI;
@@ -267,7 +268,7 @@ pub fn split_merge(area: &MultiPolygon, s: &SplitMergeSettings) -> Result<SplitM
     // them; others become blocks of their own, in a direction every region they reach into
     // allows.
     let mut pieces = std::mem::take(&mut remaining.0);
-    pieces.sort_by(|a, b| b.unsigned_area().total_cmp(&a.unsigned_area()));
+    pieces.shared_sort_by(|a, b| b.unsigned_area().total_cmp(&a.unsigned_area()));
     let (small, large): (Vec<Polygon>, Vec<Polygon>) = pieces
         .into_iter()
         .partition(|p| p.unsigned_area() < small_cell(s));
@@ -501,7 +502,7 @@ fn best_cell(
         })
         .filter(|&(a, _)| a >= small_cell(s))
         .collect();
-    by_area.sort_unstable_by(|x, y| y.0.total_cmp(&x.0).then(x.1.cmp(&y.1)));
+    by_area.shared_sort_unstable_by(|x, y| y.0.total_cmp(&x.0).then(x.1.cmp(&y.1)));
     let mut best: Option<(f64, usize)> = None;
     for (a, i) in by_area {
         let bound = c.efficiency + (c.area + c.distance) * (a / substantial).min(1.0) + bonus;

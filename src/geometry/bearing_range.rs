@@ -4,6 +4,7 @@
 //! a swath driven one way or the other is the same swath, a range forbids swath directions: the
 //! bearings in it and their reverses. `[20, 70]` forbids driving at 20-70 degrees and at 200-250.
 
+use crate::sort::SharedSort;
 use serde::{Deserialize, Serialize};
 
 /// A range of compass bearings, clockwise from `from_deg` to `to_deg` (degrees, 0 = north).
@@ -88,7 +89,7 @@ pub fn forbids_every_direction(ranges: &[BearingRange]) -> bool {
             intervals.push((start, end));
         }
     }
-    intervals.sort_by(|a, b| a.0.total_cmp(&b.0));
+    intervals.shared_sort_by(|a, b| a.0.total_cmp(&b.0));
     let mut reached = 0.0;
     for (start, end) in intervals {
         if start > reached {

@@ -9,6 +9,7 @@
 //! of the direction search, which clips the field at many bearings.
 
 use super::bearing::unit_vector;
+use crate::sort::SharedSort;
 use geo::{Coord, MultiPolygon};
 
 /// A frame rotated to a bearing: `along` points in the driving direction, `across` to its right.
@@ -110,7 +111,7 @@ impl SweepFrame {
                 }
             }
         }
-        edges.sort_unstable_by(|e, f| e.c0.min(e.c1).total_cmp(&f.c0.min(f.c1)));
+        edges.shared_sort_unstable_by(|e, f| e.c0.min(e.c1).total_cmp(&f.c0.min(f.c1)));
 
         let mut out = Vec::with_capacity(offsets.len());
         let mut active: Vec<SweepEdge> = Vec::new();
@@ -131,7 +132,7 @@ impl SweepFrame {
                     crossings.push(e.a0 + t * (e.a1 - e.a0));
                 }
             }
-            crossings.sort_unstable_by(f64::total_cmp);
+            crossings.shared_sort_unstable_by(f64::total_cmp);
             let pieces = crossings
                 .chunks_exact(2)
                 .filter(|pair| pair[1] > pair[0])

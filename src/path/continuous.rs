@@ -95,6 +95,7 @@
 //! ```
 
 use super::curve::{Gear, Pose, Segment};
+use crate::sort::SharedSort;
 use std::f64::consts::{PI, TAU};
 
 /// A built path must end this close to its goal, metres.
@@ -252,7 +253,7 @@ pub fn cc_dubins_all(from: Pose, to: Pose, s: &CcSettings) -> Vec<CcPath> {
     let Some((g, mut cands)) = prepare(from, to, s) else {
         return Vec::new();
     };
-    cands.sort_by(|a, b| a.length.total_cmp(&b.length));
+    cands.shared_sort_by(|a, b| a.length.total_cmp(&b.length));
     let mut found: Vec<CcPath> = Vec::new();
     for c in &cands {
         if found.iter().any(|p| p.word == c.word) {
@@ -262,7 +263,7 @@ pub fn cc_dubins_all(from: Pose, to: Pose, s: &CcSettings) -> Vec<CcPath> {
             found.push(p);
         }
     }
-    found.sort_by_key(|p| WORDS.iter().position(|w| *w == p.word));
+    found.shared_sort_by_key(|p| WORDS.iter().position(|w| *w == p.word));
     found
 }
 
@@ -270,7 +271,7 @@ pub fn cc_dubins_all(from: Pose, to: Pose, s: &CcSettings) -> Vec<CcPath> {
 /// is not finite, the settings are unusable or no word verifies.
 pub fn cc_dubins_shortest(from: Pose, to: Pose, s: &CcSettings) -> Option<CcPath> {
     let (g, mut cands) = prepare(from, to, s)?;
-    cands.sort_by(|a, b| a.length.total_cmp(&b.length));
+    cands.shared_sort_by(|a, b| a.length.total_cmp(&b.length));
     cands.iter().find_map(|c| build_verified(c, from, to, &g))
 }
 
@@ -295,7 +296,7 @@ pub fn cc_u_turn(from: Pose, spacing: f64, left: bool, s: &CcSettings) -> Option
     let to = Pose::new(x, y, from.heading + PI);
     let mut cands = candidates(&g, to.relative_to(&from));
     cands.extend(wide_u_turn(&g, spacing, left));
-    cands.sort_by(|a, b| a.length.total_cmp(&b.length));
+    cands.shared_sort_by(|a, b| a.length.total_cmp(&b.length));
     cands
         .iter()
         .filter_map(|c| build_verified(c, from, to, &g))

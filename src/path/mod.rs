@@ -371,7 +371,13 @@ fn connection(
                 best_join(&pts, half, v, |p, limit| join_cost_below(a, p, limit), true)
             });
             let end_at = to.map_or(0.0, |b| {
-                best_join(&pts, half, v, |p, limit| join_cost_below(p, b, limit), false)
+                best_join(
+                    &pts,
+                    half,
+                    v,
+                    |p, limit| join_cost_below(p, b, limit),
+                    false,
+                )
             });
             let middle = cut_polyline(&pts, start_at, length - end_at);
             let mut along = follow(&middle, v);

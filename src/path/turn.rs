@@ -34,6 +34,7 @@ use super::continuous::{cc_dubins_all, cc_turn, cc_u_turn, CcSettings};
 use super::curve::{self, Gear, Pose, Segment};
 use super::dubins::dubins_all;
 use super::reeds_shepp::reeds_shepp_all;
+use crate::sort::SharedSort;
 use geo::{Coord, Line, LineString, Polygon};
 use rstar::{RTree, RTreeObject, AABB};
 use std::f64::consts::FRAC_PI_2;
@@ -241,7 +242,7 @@ impl Vehicle {
         for t in &mut out {
             t.segments.retain(|s| s.length > 1e-12);
         }
-        out.sort_by(|a, b| a.cost().total_cmp(&b.cost()));
+        out.shared_sort_by(|a, b| a.cost().total_cmp(&b.cost()));
         out
     }
 

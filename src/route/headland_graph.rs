@@ -33,6 +33,7 @@
 
 use crate::geometry::point_segment_distance;
 use crate::headland::HeadlandPass;
+use crate::sort::SharedSort;
 use geo::{Coord, LineString};
 use rstar::{PointDistance, RTree, RTreeObject, AABB};
 use std::cmp::Ordering;
@@ -320,7 +321,7 @@ impl HeadlandGraph {
             on_line[node.line].push(n);
         }
         for (line, ids) in on_line.iter_mut().enumerate() {
-            ids.sort_by(|&a, &b| nodes[a].at.total_cmp(&nodes[b].at));
+            ids.shared_sort_by(|&a, &b| nodes[a].at.total_cmp(&nodes[b].at));
             let l = &self.lines[line];
             for w in ids.windows(2) {
                 let len = nodes[w[1]].at - nodes[w[0]].at;

@@ -26,6 +26,7 @@ pub mod sequence;
 
 use crate::decompose::Blocks;
 use crate::headland::{HeadlandOrder, HeadlandPass, PassAround};
+use crate::sort::SharedSort;
 use crate::swath::Swaths;
 use geo::{Closest, ClosestPoint, Coord, LineString, Point};
 use headland_graph::{HeadlandGraph, CROSSING_PENALTY_M};
@@ -630,9 +631,9 @@ fn append_headland_passes(
 ) -> Option<Coord> {
     let mut order: Vec<usize> = (0..passes.len()).filter(|&i| which(&passes[i])).collect();
     if outermost_first {
-        order.sort_by_key(|&i| passes[i].index);
+        order.shared_sort_by_key(|&i| passes[i].index);
     } else {
-        order.sort_by_key(|&i| std::cmp::Reverse(passes[i].index));
+        order.shared_sort_by_key(|&i| std::cmp::Reverse(passes[i].index));
     }
     let mut k = 0;
     while k < order.len() {

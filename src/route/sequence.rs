@@ -34,8 +34,8 @@
 //!   worked and on where it stands, the exit of its last way: every completion of it costs the
 //!   same whatever order came before. So `best[set][way]`, filled for the sets in increasing
 //!   order, each from the sets one block smaller, is exact, in `O(2^blocks x blocks^2 x ways^2)`
-//!   time and `O(2^blocks x blocks x ways)` memory: about 1.5 ms at [`EXACT_MAX_BLOCKS`] blocks of
-//!   four ways (native, release).
+//!   time and `O(2^blocks x blocks x ways)` memory: about 3 ms at [`EXACT_MAX_BLOCKS`] blocks of
+//!   four ways natively (release), about 10 ms in WebAssembly.
 //! - [`solve_heuristic`]: above that, the ant colony of Zhou et al. (Ant System, Dorigo 1996) over
 //!   the (block, way) nodes, with their parameters `rho = 0.5, alpha = 1, beta = 5` and as many
 //!   ants as nodes (capped, see [`AntColony`]); each ant walks from node to node through blocks
@@ -53,10 +53,12 @@
 //! - [`exhaustive`] and [`random_restarts`]: yardsticks for the two above, as the exhaustive
 //!   search of Zhou et al. 3.2.
 //!
-//! [`solve`] takes the exact answer up to [`EXACT_MAX_BLOCKS`] blocks and the heuristic above.
+//! [`solve`] takes the exact answer up to [`EXACT_MAX_BLOCKS`] blocks (while its table costs at
+//! most [`EXACT_MAX_WORK`] steps) and the heuristic above.
 //! Every solver is deterministic: the same problem and seed give the same sequence.
 
 use crate::rng::SplitMix64 as Rng;
+use crate::sort::SharedSort;
 use std::ops::Range;
 
 /// One way to work a block.
@@ -159,6 +161,13 @@ pub const LARGE_COST: f64 = 1e12;
 
 /// [`solve`] is exact up to this many blocks (with ways).
 pub const EXACT_MAX_BLOCKS: usize = 12;
+
+/// The most steps (`2^blocks x ways^2`, about twice the additions its table takes) for which
+/// [`solve`] takes the exact answer rather than the heuristic: 12 blocks of four ways each
+/// (`4096 x 48^2`, 9.4 million) are exact, 12 blocks of eight (when blocks may also end by
+/// driving back along their last swath) are not. In WebAssembly the first takes about 10 ms,
+/// the second 25, the ant colony under 2.
+const EXACT_MAX_WORK: usize = 10_000_000;
 
 /// [`exhaustive`] enumerates every permutation up to this many blocks.
 pub const EXHAUSTIVE_MAX_BLOCKS: usize = 9;
@@ -406,7 +415,7 @@ impl<'p> Compiled<'p> {
                 };
                 others.clear();
                 others.extend((0..blocks).filter(|&b| b != a));
-                others.sort_by(|&x, &y| key(x).total_cmp(&key(y)).then(x.cmp(&y)));
+                others.shared_sort_by(|&x, &y| key(x).total_cmp(&key(y)).then(x.cmp(&y)));
                 for &b in others.iter().take(NEAR) {
                     if outgoing {
                         near[a * blocks + b] = true;
@@ -715,8 +724,8 @@ fn empty_sequence(method: SequenceMethod) -> Sequence {
     }
 }
 
-/// Exact for up to [`EXACT_MAX_BLOCKS`] blocks, else the ant colony improved by local search
-/// (default [`AntColony`] settings with this seed).
+/// Exact for up to [`EXACT_MAX_BLOCKS`] blocks (and [`EXACT_MAX_WORK`] steps), else the ant
+/// colony improved by local search (default [`AntColony`] settings with this seed).
 ///
 /// ```
 /// use furrow::route::sequence::{solve, SequenceMethod, SequenceProblem, Way};
@@ -742,7 +751,7 @@ fn empty_sequence(method: SequenceMethod) -> Sequence {
 pub fn solve(problem: &SequenceProblem, seed: u64) -> Sequence {
     let blocks = problem.ways.iter().filter(|w| !w.is_empty()).count();
     let ways: usize = problem.ways.iter().map(Vec::len).sum();
-    if exact_fits(blocks, ways) {
+    if exact_pays(blocks, ways) {
         solve_exact(problem)
     } else {
         solve_heuristic(
@@ -760,6 +769,16 @@ fn exact_fits(blocks: usize, nodes: usize) -> bool {
     blocks <= EXACT_MAX_BLOCKS
         && nodes <= DENSE_MAX_NODES
         && (1usize << blocks).saturating_mul(nodes) <= EXACT_MAX_STATES
+}
+
+/// Whether [`solve`] takes the exact answer: it fits, and its table costs at most
+/// [`EXACT_MAX_WORK`] steps.
+fn exact_pays(blocks: usize, nodes: usize) -> bool {
+    exact_fits(blocks, nodes)
+        && (1usize << blocks)
+            .saturating_mul(nodes)
+            .saturating_mul(nodes)
+            <= EXACT_MAX_WORK
 }
 
 /// Dynamic programming over subsets of blocks and the way (hence exit point) of the last block
@@ -812,7 +831,11 @@ pub fn solve_exact(problem: &SequenceProblem) -> Sequence {
                         let k = blocks_before.trailing_zeros() as usize;
                         blocks_before &= blocks_before - 1;
                         let ways = c.ways(k);
-                        least = least.min(min_plus(&previous[ways.clone()], &arriving[ways]));
+                        // A comparison, not f64::min: in wasm that is a call (to keep NaNs).
+                        let cost = min_plus(&previous[ways.clone()], &arriving[ways]);
+                        if cost < least {
+                            least = cost;
+                        }
                     }
                     least
                 };
@@ -1209,7 +1232,7 @@ fn ant_colony(c: &Compiled, settings: &AntColony, rng: &mut Rng) -> Vec<Vec<usiz
             list.select_nth_unstable_by(width, by_key);
             list.truncate(width);
         }
-        list.sort_unstable_by(by_key);
+        list.shared_sort_unstable_by(by_key);
         // Padded with `nodes` (no node) where there are fewer.
         candidates.extend(
             list.iter()

@@ -36,6 +36,7 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+use crate::sort::SharedSort;
 use geo::Coord;
 use rstar::{PointDistance, RTree, RTreeObject, AABB};
 
@@ -398,7 +399,7 @@ fn without_runs(tracks: Vec<Track>) -> Vec<Track> {
             .map(|r| (r.1 .0 + CUT_INSIDE_M, r.2 .0 - CUT_INSIDE_M))
             .filter(|r| r.1 > r.0)
             .collect();
-        runs.sort_by(|a, b| a.0.total_cmp(&b.0));
+        runs.shared_sort_by(|a, b| a.0.total_cmp(&b.0));
         cuts[t] = runs;
     }
     let mut out = Vec::with_capacity(tracks.len());
@@ -498,7 +499,7 @@ impl Builder {
         }
         let mut on_track = std::mem::take(&mut self.on_track);
         for list in &mut on_track {
-            list.sort_by(|&a, &b| nodes[a].at.total_cmp(&nodes[b].at));
+            list.shared_sort_by(|&a, &b| nodes[a].at.total_cmp(&nodes[b].at));
         }
         TrackGraph {
             tracks,

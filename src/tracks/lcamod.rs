@@ -85,6 +85,7 @@
 use super::graph::{TrackGraph, TrackKind};
 use super::search::{may_turn, TrackQuery, Turning, MAX_START_OFFSET_M};
 use crate::error::{ErrorCode, PlanError};
+use crate::sort::SharedSort;
 use geo::Coord;
 use std::collections::VecDeque;
 
@@ -589,7 +590,7 @@ impl<'a> Model<'a> {
                     (o > 1e-9 && o < arc.length - 1e-9).then_some(o)
                 })
                 .collect();
-            inner.sort_by(f64::total_cmp);
+            inner.shared_sort_by(f64::total_cmp);
             for o in inner {
                 push(
                     place(if arc.forward {

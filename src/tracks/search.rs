@@ -41,6 +41,7 @@
 
 use super::graph::{Track, TrackGraph};
 use crate::error::{ErrorCode, PlanError};
+use crate::sort::SharedSort;
 use geo::Coord;
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
@@ -314,7 +315,7 @@ impl<'a> Search<'a> {
             .iter()
             .flat_map(|t| [x(t.points[0]), x(t.points[t.points.len() - 1])])
             .collect();
-        ends.sort_by(f64::total_cmp);
+        ends.shared_sort_by(f64::total_cmp);
         ends.dedup_by(|a, b| (*a - *b).abs() < 1e-6);
         let all: Vec<f64> = self
             .graph
@@ -637,7 +638,7 @@ fn path_points(tracks: &[Track], stretches: &[Stretch]) -> Vec<Coord> {
                 }
             }
         }
-        inner.sort_by(f64::total_cmp);
+        inner.shared_sort_by(f64::total_cmp);
         inner.dedup_by(|a, b| (*a - *b).abs() < 1e-9);
         if s.to < s.from {
             inner.reverse();
