@@ -11,6 +11,7 @@
 
 use crate::error::{ErrorCode, PlanError};
 use crate::field::{Field, ProhibitedRegion};
+use crate::geometry::PlanarHypot;
 use crate::geometry::{
     bearing_of, deg_to_bearing, forbids_every_direction, swath_direction, BearingRange, SweepFrame,
 };
@@ -408,7 +409,7 @@ fn edges_longest_first(ring: &LineString, tolerance_m: f64) -> Vec<(f64, f64)> {
         .map(|line| {
             let d = line.delta();
             (
-                d.x.hypot(d.y),
+                d.x.planar_hypot(d.y),
                 swath_direction(bearing_of(line.start, line.end)),
             )
         })
@@ -446,7 +447,7 @@ pub fn search_region(
         let diagonal = o
             .polygon
             .bounding_rect()
-            .map_or(0.0, |r| r.width().hypot(r.height()));
+            .map_or(0.0, |r| r.width().planar_hypot(r.height()));
         if diagonal >= obstacle_threshold {
             holes.push(o.polygon.exterior().clone());
         }
@@ -661,7 +662,7 @@ pub fn reference_direction(
             ))
         }
     };
-    if (b.x - a.x).hypot(b.y - a.y) < 1e-6 {
+    if (b.x - a.x).planar_hypot(b.y - a.y) < 1e-6 {
         return Err(PlanError::new(
             ErrorCode::InvalidOption,
             "the reference line's two points coincide; it gives no direction",

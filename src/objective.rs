@@ -16,6 +16,7 @@
 //! midpoint rule between those breaks is exact.
 
 use crate::decompose::block_members;
+use crate::geometry::PlanarHypot;
 use crate::sort::SharedSort;
 use crate::swath::{Swath, Swaths};
 use geo::{Area, Coord, MultiPolygon};
@@ -387,7 +388,11 @@ pub fn measure_turns(swaths: &[Swath], width: f64, area_m2: f64, m: &Machine) ->
         if let Some(before) = previous_corners {
             let gap = before
                 .iter()
-                .flat_map(|p| corners.iter().map(move |q| (p.x - q.x).hypot(p.y - q.y)))
+                .flat_map(|p| {
+                    corners
+                        .iter()
+                        .map(move |q| (p.x - q.x).planar_hypot(p.y - q.y))
+                })
                 .fold(f64::INFINITY, f64::min);
             let change = turn_length(width, m.turn_radius) + gap;
             stats.turn_count += 1;

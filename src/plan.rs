@@ -21,6 +21,7 @@ use crate::field::projection::{NearOutput, NEAR_M};
 use crate::field::simplify::tolerance_for_width;
 use crate::field::{Field, ProhibitedRegion};
 use crate::geometry::forbids_every_direction;
+use crate::geometry::PlanarHypot;
 use crate::geometry::SweepFrame;
 use crate::headland::edges::{passes_per_edge, EdgeRule};
 use crate::headland::{build, HeadlandSettings, Headlands};
@@ -111,7 +112,7 @@ impl Plan {
         for (x, y) in s.x.iter_mut().zip(s.y.iter_mut()) {
             let q = geo::Coord { x: *x, y: *y };
             let map = match near {
-                Some(n) if (q.x - n.origin.x).hypot(q.y - n.origin.y) < NEAR_M => n,
+                Some(n) if (q.x - n.origin.x).planar_hypot(q.y - n.origin.y) < NEAR_M => n,
                 _ => {
                     let n = self.field.frame.output_near(q);
                     near = Some(n);
@@ -203,7 +204,7 @@ pub(crate) fn plan_stages(
         let lines = field
             .boundary
             .bounding_rect()
-            .map_or(0.0, |r| r.width().hypot(r.height()))
+            .map_or(0.0, |r| r.width().planar_hypot(r.height()))
             / width;
         let evaluations = match options.search {
             SearchMethod::BruteForce => 180.0 / options.search_step_deg + 8.0,
@@ -818,7 +819,7 @@ fn same_blocks(a: &[BlockSignature], b: &[BlockSignature]) -> bool {
         let turn = (x.bearing - y.bearing).rem_euclid(std::f64::consts::PI);
         turn.min(std::f64::consts::PI - turn) < 1e-6
             && (x.area_m2 - y.area_m2).abs() <= 1e-6 * x.area_m2.max(1.0)
-            && (x.centroid.x - y.centroid.x).hypot(x.centroid.y - y.centroid.y) < 1e-4
+            && (x.centroid.x - y.centroid.x).planar_hypot(x.centroid.y - y.centroid.y) < 1e-4
     };
     let mut taken = vec![false; b.len()];
     a.iter().all(|x| {

@@ -13,6 +13,7 @@
 
 use super::BlockArea;
 use crate::field::ProhibitedRegion;
+use crate::geometry::PlanarHypot;
 use crate::geometry::{bearing_of, swath_direction, BearingRange};
 use crate::headland::{HeadlandPass, PassAround};
 use geo::{
@@ -60,7 +61,7 @@ impl Border {
 
     /// Its length, metres.
     pub fn length(&self) -> f64 {
-        (self.to.x - self.from.x).hypot(self.to.y - self.from.y)
+        (self.to.x - self.from.x).planar_hypot(self.to.y - self.from.y)
     }
 }
 
@@ -98,7 +99,7 @@ pub fn borders(blocks: &[BlockArea], min_length: f64) -> Vec<Border> {
             let first = out.len();
             for &(a, b) in &edges[j] {
                 let d = b - a;
-                let len = d.x.hypot(d.y);
+                let len = d.x.planar_hypot(d.y);
                 if len < ON_EDGE_M {
                     continue;
                 }

@@ -8,6 +8,7 @@
 //! (its ends, where the swaths end). Work is done in the [`SweepFrame`] of the direction, where
 //! the slab lines are `across = const`.
 
+use crate::geometry::PlanarHypot;
 use crate::geometry::SweepFrame;
 use crate::sort::SharedSort;
 use geo::{Coord, LineString, MultiPolygon, Polygon, SimplifyIdx};
@@ -472,12 +473,12 @@ pub fn outline(trapezoids: &[Trapezoid], chain: &[usize], frame: &SweepFrame) ->
     }
     // Where a trapezoid's ends meet at a side (a triangle), its two points coincide. (Not the
     // ring cleaning of the input: that takes sharp tips for spikes.)
-    pts.dedup_by(|a, b| (a.x - b.x).hypot(a.y - b.y) < MATCH_M);
+    pts.dedup_by(|a, b| (a.x - b.x).planar_hypot(a.y - b.y) < MATCH_M);
     while pts.len() > 1
         && pts
             .first()
             .zip(pts.last())
-            .is_some_and(|(a, b)| (a.x - b.x).hypot(a.y - b.y) < MATCH_M)
+            .is_some_and(|(a, b)| (a.x - b.x).planar_hypot(a.y - b.y) < MATCH_M)
     {
         pts.pop();
     }

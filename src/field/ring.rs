@@ -5,6 +5,7 @@
 //! straight back). [`clean_ring`] removes those and says what it did; [`find_self_intersection`]
 //! finds where a ring crosses or touches itself.
 
+use crate::geometry::PlanarHypot;
 use geo::algorithm::sweep::{Cross, Intersections};
 use geo::{Coord, Line, LineIntersection};
 
@@ -118,7 +119,7 @@ enum VertexKind {
 fn classify(prev: Coord, v: Coord, next: Coord) -> VertexKind {
     let a = prev - v;
     let b = next - v;
-    let (la, lb) = (a.x.hypot(a.y), b.x.hypot(b.y));
+    let (la, lb) = (a.x.planar_hypot(a.y), b.x.planar_hypot(b.y));
     if la < SAME_POINT_M || lb < SAME_POINT_M {
         return VertexKind::Repeated;
     }
@@ -130,7 +131,7 @@ fn classify(prev: Coord, v: Coord, next: Coord) -> VertexKind {
         return VertexKind::Spike;
     }
     let base = next - prev;
-    let base_len = base.x.hypot(base.y);
+    let base_len = base.x.planar_hypot(base.y);
     if base_len > 0.0 && dot < 0.0 {
         // Height of v over the line prev-next.
         let height = ((v.x - prev.x) * base.y - (v.y - prev.y) * base.x).abs() / base_len;
@@ -143,7 +144,7 @@ fn classify(prev: Coord, v: Coord, next: Coord) -> VertexKind {
 
 #[inline]
 fn distance(a: Coord, b: Coord) -> f64 {
-    (a.x - b.x).hypot(a.y - b.y)
+    (a.x - b.x).planar_hypot(a.y - b.y)
 }
 
 /// Twice the signed area of an open ring: positive when counter-clockwise.

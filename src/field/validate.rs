@@ -8,6 +8,7 @@ use super::ring::{clean_ring, find_self_intersection, signed_area2, RingRepairs}
 use super::{BearingRange, Coordinates, Field, Obstacle, ProhibitedRegion};
 use crate::error::{ErrorCode, PlanError, Warning, WarningCode};
 use crate::geometry::forbids_every_direction;
+use crate::geometry::PlanarHypot;
 use geo::{
     Area, BooleanOps, BoundingRect, Contains, Coord, Intersects, LineString, MultiPolygon, Polygon,
 };
@@ -74,7 +75,7 @@ pub fn field_from_input(
         return Err(zero_area(&boundary_in, 0, MIN_FIELD_AREA_M2));
     }
     if let Some(rect) = boundary.bounding_rect() {
-        let extent = rect.width().hypot(rect.height());
+        let extent = rect.width().planar_hypot(rect.height());
         if extent > MAX_FIELD_EXTENT_M {
             return Err(PlanError::new(
                 ErrorCode::FieldTooLarge,

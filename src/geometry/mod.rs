@@ -8,5 +8,5 @@ pub mod parallel_lines;
 
 pub use bearing::{bearing_of, deg_to_bearing, swath_direction, unit_vector};
 pub use bearing_range::{forbids_every_direction, BearingRange};
-pub use distance::point_segment_distance;
+pub use distance::{point_segment_distance, PlanarHypot};
 pub use parallel_lines::SweepFrame;

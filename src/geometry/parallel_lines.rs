@@ -26,6 +26,9 @@ struct SweepEdge {
     a0: f64,
     c1: f64,
     a1: f64,
+    /// The lower and the higher of `c0` and `c1`.
+    low: f64,
+    high: f64,
 }
 
 impl SweepFrame {
@@ -106,23 +109,32 @@ impl SweepFrame {
                     let (c0, a0) = self.project(w[0]);
                     let (c1, a1) = self.project(w[1]);
                     if c0 != c1 {
-                        edges.push(SweepEdge { c0, a0, c1, a1 });
+                        // Comparisons, not f64::min and max: in wasm those are calls.
+                        let (low, high) = if c0 < c1 { (c0, c1) } else { (c1, c0) };
+                        edges.push(SweepEdge {
+                            c0,
+                            a0,
+                            c1,
+                            a1,
+                            low,
+                            high,
+                        });
                     }
                 }
             }
         }
-        edges.shared_sort_unstable_by(|e, f| e.c0.min(e.c1).total_cmp(&f.c0.min(f.c1)));
+        edges.shared_sort_unstable_by(|e, f| e.low.total_cmp(&f.low));
 
         let mut out = Vec::with_capacity(offsets.len());
         let mut active: Vec<SweepEdge> = Vec::new();
         let mut next = 0;
         let mut crossings: Vec<f64> = Vec::new();
         for &c in offsets {
-            while next < edges.len() && edges[next].c0.min(edges[next].c1) <= c {
+            while next < edges.len() && edges[next].low <= c {
                 active.push(edges[next]);
                 next += 1;
             }
-            active.retain(|e| e.c0.max(e.c1) > c);
+            active.retain(|e| e.high > c);
             crossings.clear();
             for e in &active {
                 // Half-open rule: an edge counts when exactly one end lies at or below c, so a

@@ -28,6 +28,7 @@ pub use edges::{EdgePasses, HeadlandMode};
 use crate::error::{ErrorCode, PlanError};
 use crate::field::Field;
 use crate::geometry::point_segment_distance;
+use crate::geometry::PlanarHypot;
 use geo::algorithm::bool_ops::FillRule;
 use geo::{Area, BooleanOps, Coord, Euclidean, Length, LineString, MultiPolygon, Polygon};
 use offset::{drop_slivers, inset, line_band, open, outset, outset_fine};
@@ -303,7 +304,7 @@ fn without_crumbs(ring: &LineString) -> LineString {
     for &p in &ring.0 {
         if out
             .last()
-            .is_none_or(|q: &Coord| (p.x - q.x).hypot(p.y - q.y) >= CRUMB_M)
+            .is_none_or(|q: &Coord| (p.x - q.x).planar_hypot(p.y - q.y) >= CRUMB_M)
         {
             out.push(p);
         }

@@ -95,6 +95,7 @@
 //! ```
 
 use super::curve::{Gear, Pose, Segment};
+use crate::geometry::PlanarHypot;
 use crate::sort::SharedSort;
 use std::f64::consts::{PI, TAU};
 
@@ -145,7 +146,7 @@ impl CcSettings {
         let theta = e.heading;
         let ox = e.x - theta.sin() / k;
         let oy = e.y + theta.cos() / k;
-        let radius = ox.hypot(oy);
+        let radius = ox.planar_hypot(oy);
         let g = CcGeometry {
             max_curvature: k,
             max_sharpness: sig,
@@ -691,7 +692,7 @@ fn candidates(g: &CcGeometry, q: Pose) -> Vec<Candidate> {
     // LSL and RSR: the line parallel to the centres, 2Ωx shorter than their distance.
     for (name, c1, c2, left) in [("LSL", ls, lg, true), ("RSR", rs, rg, false)] {
         let (dx, dy) = (c2.0 - c1.0, c2.1 - c1.1);
-        let l = snap_nonnegative(dx.hypot(dy) - 2.0 * ox);
+        let l = snap_nonnegative(dx.planar_hypot(dy) - 2.0 * ox);
         let psi = dy.atan2(dx);
         let (d1, d2) = if left {
             (turn_angle(psi), turn_angle(gh - psi))
@@ -747,7 +748,7 @@ fn candidates(g: &CcGeometry, q: Pose) -> Vec<Candidate> {
     // LRL and RLR: the middle circle 2R_Ω from both outer ones.
     for (name, c1, c3, left) in [("LRL", ls, lg, true), ("RLR", rs, rg, false)] {
         let (dx, dy) = (c3.0 - c1.0, c3.1 - c1.1);
-        let d = dx.hypot(dy);
+        let d = dx.planar_hypot(dy);
         if d > 4.0 * r {
             continue;
         }
@@ -875,7 +876,7 @@ mod tests {
     /// (word, t, p, q) for every Dubins word that exists, in units of the radius.
     fn dubins_words(from: Pose, to: Pose, r: f64) -> Vec<(&'static str, f64, f64, f64)> {
         let (dx, dy) = (to.x - from.x, to.y - from.y);
-        let d = dx.hypot(dy) / r;
+        let d = dx.planar_hypot(dy) / r;
         let th = dy.atan2(dx);
         let a = m2p(from.heading - th);
         let b = m2p(to.heading - th);
@@ -1053,7 +1054,7 @@ mod tests {
             assert!((end.heading - (from.heading + d)).abs() < 1e-12);
             // On the CC circle, at μ outside its tangent.
             let c = g.start_centre(from, d > 0.0);
-            let rr = (end.x - c.0).hypot(end.y - c.1);
+            let rr = (end.x - c.0).planar_hypot(end.y - c.1);
             assert!((rr - g.radius).abs() < 1e-9);
             let polar = (end.y - c.1).atan2(end.x - c.0);
             let tangent = polar + d.signum() * PI / 2.0;

@@ -19,6 +19,7 @@
 //! assert!((end.heading - PI / 2.0).abs() < 1e-12);
 //! ```
 
+use crate::geometry::PlanarHypot;
 use std::f64::consts::PI;
 
 /// Where the machine is and which way it faces.
@@ -40,7 +41,7 @@ impl Pose {
 
     /// Distance to another pose's position, metres.
     pub fn distance(&self, o: &Pose) -> f64 {
-        (self.x - o.x).hypot(self.y - o.y)
+        (self.x - o.x).planar_hypot(self.y - o.y)
     }
 
     /// The difference of headings `o − self` wrapped into (−π, π].

@@ -39,6 +39,7 @@
 //! ```
 
 use super::curve::{wrap, Gear, Pose, Segment};
+use crate::geometry::PlanarHypot;
 use std::f64::consts::TAU;
 
 /// Normalised angles within this of a full turn are taken as no turn at all (they come from
@@ -172,7 +173,7 @@ impl Frame {
             return None;
         }
         let (dx, dy) = (to.x - from.x, to.y - from.y);
-        let dist = dx.hypot(dy);
+        let dist = dx.planar_hypot(dy);
         let d = dist / radius;
         if !d.is_finite() {
             return None;
@@ -202,13 +203,13 @@ impl Frame {
             DubinsWord::Lsl => {
                 // From the start's left circle to the goal's: the line is their outer tangent.
                 let (vx, vy) = (f.d + f.sa - f.sb, f.cb - f.ca);
-                let p = vx.hypot(vy);
+                let p = vx.planar_hypot(vy);
                 let dir = if p < TINY { f.alpha } else { vy.atan2(vx) };
                 Some([turn(dir - f.alpha), p, turn(f.beta - dir)])
             }
             DubinsWord::Rsr => {
                 let (vx, vy) = (f.d - f.sa + f.sb, f.ca - f.cb);
-                let p = vx.hypot(vy);
+                let p = vx.planar_hypot(vy);
                 let dir = if p < TINY { f.alpha } else { vy.atan2(vx) };
                 Some([turn(f.alpha - dir), p, turn(dir - f.beta)])
             }
@@ -588,7 +589,7 @@ mod tests {
                 let c1 = centre(a, s1, r);
                 let c2 = centre(b, s2, r);
                 let (wx, wy) = (c2.0 - c1.0, c2.1 - c1.1);
-                let w = wx.hypot(wy);
+                let w = wx.planar_hypot(wy);
                 let aw = wy.atan2(wx);
                 let k = r * (s2 - s1) / w;
                 if k.is_nan() || k.abs() > 1.0 {
@@ -620,7 +621,7 @@ mod tests {
             let c1 = centre(a, s1, r);
             let c3 = centre(b, s1, r);
             let (wx, wy) = (c3.0 - c1.0, c3.1 - c1.1);
-            let w = wx.hypot(wy);
+            let w = wx.planar_hypot(wy);
             if w.is_nan() || w > 4.0 * r || w < 1e-9 {
                 continue;
             }

@@ -31,6 +31,7 @@
 
 use super::curve::{wrap, Gear, Pose, Segment};
 use super::turn::Vehicle;
+use crate::geometry::PlanarHypot;
 use geo::Coord;
 
 /// Most length of edges (in turning radii) a rounding may leave out between two others.
@@ -50,7 +51,7 @@ pub fn follow(points: &[Coord], v: &Vehicle) -> Vec<Segment> {
         }
         if pts
             .last()
-            .is_none_or(|q: &Coord| (p.x - q.x).hypot(p.y - q.y) > SAME_POINT_M)
+            .is_none_or(|q: &Coord| (p.x - q.x).planar_hypot(p.y - q.y) > SAME_POINT_M)
         {
             pts.push(p);
         }
@@ -204,7 +205,7 @@ struct Edge {
 impl Edge {
     fn new(from: Coord, to: Coord) -> Self {
         let d = to - from;
-        let length = d.x.hypot(d.y);
+        let length = d.x.planar_hypot(d.y);
         Edge {
             from,
             dir: Coord {

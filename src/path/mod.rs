@@ -27,6 +27,7 @@ mod testing;
 pub mod turn;
 
 use crate::geometry::point_segment_distance;
+use crate::geometry::PlanarHypot;
 use crate::headland::HeadlandPass;
 use crate::route::{nearest_on_ring, Route, RouteStep};
 use crate::swath::Swaths;
@@ -105,7 +106,7 @@ impl PathSegment {
             for c in turn::chord_points(p) {
                 if pts
                     .last()
-                    .is_none_or(|q: &Coord| (q.x - c.x).hypot(q.y - c.y) > 1e-9)
+                    .is_none_or(|q: &Coord| (q.x - c.x).planar_hypot(q.y - c.y) > 1e-9)
                 {
                     pts.push(c);
                 }
@@ -224,7 +225,7 @@ pub fn build_path(
                 let d = b - a;
                 let start = Pose::new(a.x, a.y, d.y.atan2(d.x));
                 (
-                    vec![Segment::line(start, d.x.hypot(d.y), Gear::Forward)],
+                    vec![Segment::line(start, d.x.planar_hypot(d.y), Gear::Forward)],
                     SegmentKind::Swath,
                     Some(block),
                 )
@@ -439,7 +440,7 @@ fn best_join(
 /// Length of a polyline, metres.
 fn polyline_length(pts: &[Coord]) -> f64 {
     pts.windows(2)
-        .map(|w| (w[1].x - w[0].x).hypot(w[1].y - w[0].y))
+        .map(|w| (w[1].x - w[0].x).planar_hypot(w[1].y - w[0].y))
         .sum()
 }
 
@@ -449,7 +450,7 @@ fn polyline_pose(pts: &[Coord], d: f64) -> Option<Pose> {
     let mut last = None;
     for w in pts.windows(2) {
         let e = w[1] - w[0];
-        let l = e.x.hypot(e.y);
+        let l = e.x.planar_hypot(e.y);
         if l < 1e-9 {
             continue;
         }
@@ -473,7 +474,7 @@ fn cut_polyline(pts: &[Coord], a: f64, b: f64) -> Vec<Coord> {
     let mut s = 0.0;
     for w in pts.windows(2) {
         let e = w[1] - w[0];
-        let l = e.x.hypot(e.y);
+        let l = e.x.planar_hypot(e.y);
         let (s0, s1) = (s, s + l);
         s = s1;
         if l < 1e-12 || s1 < a || s0 > b {
@@ -512,7 +513,7 @@ fn ring_starting_at(ring: &LineString, at: Option<Coord>) -> LineString {
     out.extend_from_slice(&pts[i + 1..]);
     out.extend_from_slice(&pts[1..=i]);
     out.push(p);
-    out.dedup_by(|a, b| (a.x - b.x).hypot(a.y - b.y) < MIN_CONNECTOR_M);
+    out.dedup_by(|a, b| (a.x - b.x).planar_hypot(a.y - b.y) < MIN_CONNECTOR_M);
     LineString::new(out)
 }
 
@@ -580,7 +581,7 @@ mod tests {
         for w in path.segments.windows(2) {
             let a = *w[0].line.0.last().unwrap();
             let b = w[1].line.0[0];
-            assert!((a.x - b.x).hypot(a.y - b.y) < 1e-9);
+            assert!((a.x - b.x).planar_hypot(a.y - b.y) < 1e-9);
         }
         assert_eq!(path.count_of(SegmentKind::HeadlandPass), 1);
         assert_eq!(path.count_of(SegmentKind::Connection), 1);

@@ -47,6 +47,7 @@
 //! ```
 
 use super::curve::{wrap, Gear, Pose, Segment};
+use crate::geometry::PlanarHypot;
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 use Steer::{Left as L, Right as R, Straight as S};
 
@@ -298,7 +299,7 @@ struct Goal {
 /// 8.1: L+ S+ L+.
 fn lp_sp_lp(g: Goal) -> Option<Candidate> {
     let (xi, eta) = (g.x - g.s, g.y - 1.0 + g.c);
-    let u = xi.hypot(eta);
+    let u = xi.planar_hypot(eta);
     let t = forward_arc(eta.atan2(xi))?;
     let v = forward_arc(wrap(g.phi - t))?;
     Some(Candidate::new("CSC", &[L, S, L], &[t, u, v]))
@@ -320,7 +321,7 @@ fn lp_sp_rp(g: Goal) -> Option<Candidate> {
 /// 8.3 and 8.4: L+ R- L (C|C|C, C|CC).
 fn lp_rm_l(g: Goal) -> Option<Candidate> {
     let (xi, eta) = (g.x - g.s, g.y - 1.0 + g.c);
-    let u1 = xi.hypot(eta);
+    let u1 = xi.planar_hypot(eta);
     if u1 > 4.0 {
         return None;
     }
@@ -346,7 +347,7 @@ fn tau_omega(u: f64, v: f64, xi: f64, eta: f64, phi: f64) -> (f64, f64) {
 /// 8.7: L+ R+ L- R- (CCu|CuC).
 fn lp_rup_lum_rm(g: Goal) -> Option<Candidate> {
     let (xi, eta) = (g.x + g.s, g.y - 1.0 - g.c);
-    let rho = 0.25 * (2.0 + xi.hypot(eta));
+    let rho = 0.25 * (2.0 + xi.planar_hypot(eta));
     if rho > 1.0 {
         return None;
     }
@@ -377,7 +378,7 @@ fn lp_rum_lum_rp(g: Goal) -> Option<Candidate> {
 /// 8.9: L+ R-(π/2) S- L- (C|Cπ/2SC).
 fn lp_rm_sm_lm(g: Goal) -> Option<Candidate> {
     let (xi, eta) = (g.x - g.s, g.y - 1.0 + g.c);
-    let rho = xi.hypot(eta);
+    let rho = xi.planar_hypot(eta);
     if rho < 2.0 {
         return None;
     }
@@ -398,7 +399,7 @@ fn lp_rm_sm_lm(g: Goal) -> Option<Candidate> {
 /// 8.10: L+ R-(π/2) S- R- (C|Cπ/2SC).
 fn lp_rm_sm_rm(g: Goal) -> Option<Candidate> {
     let (xi, eta) = (g.x + g.s, g.y - 1.0 - g.c);
-    let rho = xi.hypot(eta);
+    let rho = xi.planar_hypot(eta);
     if rho < 2.0 {
         return None;
     }
@@ -418,7 +419,7 @@ fn lp_rm_sm_rm(g: Goal) -> Option<Candidate> {
 /// 8.11: L+ R-(π/2) S- L-(π/2) R+ (C|Cπ/2SCπ/2|C).
 fn lp_rm_s_lm_rp(g: Goal) -> Option<Candidate> {
     let (xi, eta) = (g.x + g.s, g.y - 1.0 - g.c);
-    let rho = xi.hypot(eta);
+    let rho = xi.planar_hypot(eta);
     if rho < 2.0 {
         return None;
     }
@@ -895,7 +896,7 @@ mod tests {
                 let c1 = centre(a, s1, r);
                 let c2 = centre(b, s2, r);
                 let (wx, wy) = (c2.0 - c1.0, c2.1 - c1.1);
-                let w = wx.hypot(wy);
+                let w = wx.planar_hypot(wy);
                 let k = r * (s2 - s1) / w;
                 if k.is_nan() || k.abs() > 1.0 {
                     continue;
@@ -925,7 +926,7 @@ mod tests {
             let c1 = centre(a, s1, r);
             let c3 = centre(b, s1, r);
             let (wx, wy) = (c3.0 - c1.0, c3.1 - c1.1);
-            let w = wx.hypot(wy);
+            let w = wx.planar_hypot(wy);
             if w.is_nan() || w > 4.0 * r || w < 1e-9 {
                 continue;
             }

@@ -32,6 +32,7 @@
 //! ```
 
 use crate::geometry::point_segment_distance;
+use crate::geometry::PlanarHypot;
 use crate::headland::HeadlandPass;
 use crate::sort::SharedSort;
 use geo::{Coord, LineString};
@@ -194,7 +195,7 @@ impl HeadlandGraph {
             let mut s = 0.0;
             at.push(0.0);
             for (index, w) in points.windows(2).enumerate() {
-                s += (w[1] - w[0]).x.hypot((w[1] - w[0]).y);
+                s += (w[1] - w[0]).x.planar_hypot((w[1] - w[0]).y);
                 at.push(s);
                 segments.push(Segment {
                     line,
@@ -226,7 +227,7 @@ impl HeadlandGraph {
     fn nearest(&self, p: Coord, radius: f64) -> Option<(usize, f64, Coord)> {
         let seg = self.tree.nearest_neighbor(&[p.x, p.y])?;
         let (foot, along) = seg.foot(p);
-        let d = (foot - p).x.hypot((foot - p).y);
+        let d = (foot - p).x.planar_hypot((foot - p).y);
         (d <= radius).then(|| {
             let at = self.lines[seg.line].at[seg.index] + along;
             (seg.line, at, foot)
@@ -253,7 +254,7 @@ impl HeadlandGraph {
             };
             match self.nearest(p, radius) {
                 Some((line, at, foot)) => {
-                    spurs.push(Some((nodes.len(), (foot - p).x.hypot((foot - p).y))));
+                    spurs.push(Some((nodes.len(), (foot - p).x.planar_hypot((foot - p).y))));
                     nodes.push(Node {
                         line,
                         at,
@@ -294,7 +295,7 @@ impl HeadlandGraph {
                     continue;
                 }
                 let (foot, along) = seg.foot(point);
-                let d = (foot - point).x.hypot((foot - point).y);
+                let d = (foot - point).x.planar_hypot((foot - point).y);
                 if d > reach && !neighbours(line, seg.line) {
                     continue;
                 }
@@ -478,7 +479,7 @@ impl Connections<'_> {
         match self.distances(from, &[to]).first() {
             Some(&Some(d)) => d,
             _ => match (self.points.get(from), self.points.get(to)) {
-                (Some(&a), Some(&b)) => (b - a).x.hypot((b - a).y) + CROSSING_PENALTY_M,
+                (Some(&a), Some(&b)) => (b - a).x.planar_hypot((b - a).y) + CROSSING_PENALTY_M,
                 _ => CROSSING_PENALTY_M,
             },
         }
@@ -520,7 +521,7 @@ impl Connections<'_> {
             out.extend(piece);
         }
         out.push(self.points[to]);
-        out.dedup_by(|a, b| (a.x - b.x).hypot(a.y - b.y) < 1e-9);
+        out.dedup_by(|a, b| (a.x - b.x).planar_hypot(a.y - b.y) < 1e-9);
         Some(LineString::new(out))
     }
 }

@@ -25,6 +25,7 @@ pub mod pattern;
 pub mod sequence;
 
 use crate::decompose::Blocks;
+use crate::geometry::PlanarHypot;
 use crate::headland::{HeadlandOrder, HeadlandPass, PassAround};
 use crate::sort::SharedSort;
 use crate::swath::Swaths;
@@ -339,7 +340,7 @@ pub fn plan_route(
         .map(|g| g.connect_with(&pairs, &ends_free));
     route.connections = vec![None; steps.len()];
     for (i, &(k, from, to)) in moves.iter().chain(&finish).enumerate() {
-        if (to - from).x.hypot((to - from).y) < 1e-6 {
+        if (to - from).x.planar_hypot((to - from).y) < 1e-6 {
             continue;
         }
         let found = lines[i].clone().or_else(|| {
@@ -523,7 +524,7 @@ fn build_problem(
         for (&to, d) in entries.iter().zip(d) {
             let cost = d.unwrap_or_else(|| {
                 let v = points[to] - points[from];
-                v.x.hypot(v.y) + CROSSING_PENALTY_M
+                v.x.planar_hypot(v.y) + CROSSING_PENALTY_M
             });
             if start {
                 from_start[to] = cost;
@@ -688,7 +689,7 @@ pub fn nearest_on_ring(ring: &geo::LineString, position: Option<Coord>) -> (f64,
 
 #[inline]
 fn distance(a: Coord, b: Coord) -> f64 {
-    (a.x - b.x).hypot(a.y - b.y)
+    (a.x - b.x).planar_hypot(a.y - b.y)
 }
 
 #[cfg(test)]

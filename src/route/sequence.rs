@@ -57,6 +57,7 @@
 //! most [`EXACT_MAX_WORK`] steps) and the heuristic above.
 //! Every solver is deterministic: the same problem and seed give the same sequence.
 
+use crate::geometry::PlanarHypot;
 use crate::rng::SplitMix64 as Rng;
 use crate::sort::SharedSort;
 use std::ops::Range;
@@ -1120,7 +1121,7 @@ pub fn random_problem(blocks: usize, seed: u64) -> SequenceProblem {
             connection.push(if i == j {
                 0.0
             } else {
-                (xi - xj).hypot(yi - yj) * detour
+                (xi - xj).planar_hypot(yi - yj) * detour
             });
         }
     }

@@ -36,6 +36,7 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+use crate::geometry::PlanarHypot;
 use crate::sort::SharedSort;
 use geo::Coord;
 use rstar::{PointDistance, RTree, RTreeObject, AABB};
@@ -170,7 +171,7 @@ impl Track {
             i = n - 1;
         }
         let d = self.points[i + 1] - self.points[i];
-        let len = d.x.hypot(d.y);
+        let len = d.x.planar_hypot(d.y);
         let u = if len > 0.0 {
             d / len
         } else {
@@ -597,7 +598,7 @@ fn alongside(tracks: &[Track], segments: &RTree<Piece>, t: usize, s: f64) -> Vec
             continue;
         }
         let d = piece.b - piece.a;
-        let dl = d.x.hypot(d.y);
+        let dl = d.x.planar_hypot(d.y);
         if dl <= 0.0 || (h.x * d.y - h.y * d.x).abs() / dl > ALONG_HEADING.sin() {
             continue;
         }

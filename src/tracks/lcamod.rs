@@ -85,6 +85,7 @@
 use super::graph::{TrackGraph, TrackKind};
 use super::search::{may_turn, TrackQuery, Turning, MAX_START_OFFSET_M};
 use crate::error::{ErrorCode, PlanError};
+use crate::geometry::PlanarHypot;
 use crate::sort::SharedSort;
 use geo::Coord;
 use std::collections::VecDeque;
@@ -408,7 +409,7 @@ impl<'a> Model<'a> {
         }
         let nodes = self.graph.nodes();
         let (p, q) = (nodes[here].point, nodes[there].point);
-        Some((p.x - q.x).hypot(p.y - q.y))
+        Some((p.x - q.x).planar_hypot(p.y - q.y))
     }
 
     /// Algorithm 1 for one neighbour of the target: LCAmod from `entry` to the target by arc
@@ -551,7 +552,7 @@ impl<'a> Model<'a> {
         let push = |p: Coord, points: &mut Vec<Coord>| {
             if points
                 .last()
-                .is_none_or(|q| (q.x - p.x).hypot(q.y - p.y) > 1e-9)
+                .is_none_or(|q| (q.x - p.x).planar_hypot(q.y - p.y) > 1e-9)
             {
                 points.push(p);
             }
@@ -561,7 +562,7 @@ impl<'a> Model<'a> {
             let arc = &self.arcs[k];
             if let (Some(a), Some(b)) = (prev.and_then(|p| p.to), arc.from) {
                 let (p, q) = (nodes[a].point, nodes[b].point);
-                length += (p.x - q.x).hypot(p.y - q.y);
+                length += (p.x - q.x).planar_hypot(p.y - q.y);
             }
             length += arc.length;
             let track = &self.graph.tracks()[arc.track];
@@ -638,7 +639,7 @@ mod tests {
     fn polyline_length(points: &[Coord]) -> f64 {
         points
             .windows(2)
-            .map(|w| (w[0].x - w[1].x).hypot(w[0].y - w[1].y))
+            .map(|w| (w[0].x - w[1].x).planar_hypot(w[0].y - w[1].y))
             .sum()
     }
 
@@ -833,9 +834,9 @@ mod tests {
                         );
                         let (start, end) = (l.points[0], l.points[l.points.len() - 1]);
                         let e_end = e.points[e.points.len() - 1];
-                        assert!((start.x - e.start.x).hypot(start.y - e.start.y) < 1e-6);
+                        assert!((start.x - e.start.x).planar_hypot(start.y - e.start.y) < 1e-6);
                         assert!(
-                            (end.x - e_end.x).hypot(end.y - e_end.y) < 1e-6,
+                            (end.x - e_end.x).planar_hypot(end.y - e_end.y) < 1e-6,
                             "{name} query {q}: at the target"
                         );
                         n.both += 1;

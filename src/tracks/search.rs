@@ -41,6 +41,7 @@
 
 use super::graph::{Track, TrackGraph};
 use crate::error::{ErrorCode, PlanError};
+use crate::geometry::PlanarHypot;
 use crate::sort::SharedSort;
 use geo::Coord;
 use std::cmp::Ordering;
@@ -371,7 +372,7 @@ impl<'a> Search<'a> {
     fn bound(&self, p: Coord) -> f64 {
         self.target_points
             .iter()
-            .map(|q| (p.x - q.x).hypot(p.y - q.y))
+            .map(|q| (p.x - q.x).planar_hypot(p.y - q.y))
             .fold(f64::INFINITY, f64::min)
     }
 
@@ -516,7 +517,7 @@ impl<'a> Search<'a> {
                 let there = g.nodes()[m];
                 // The nodes of a junction lie a few centimetres apart at most: the step from one
                 // to the other is driven too.
-                let gap = (here.point.x - there.point.x).hypot(here.point.y - there.point.y);
+                let gap = (here.point.x - there.point.x).planar_hypot(here.point.y - there.point.y);
                 for e in 0..2 {
                     let leave = self.heading(there.track, there.at, e, true);
                     let straight_on = m == node && e == dir;
@@ -620,7 +621,7 @@ fn path_points(tracks: &[Track], stretches: &[Stretch]) -> Vec<Coord> {
         let mut push = |p: Coord| {
             if out
                 .last()
-                .is_none_or(|q| (q.x - p.x).hypot(q.y - p.y) > 1e-9)
+                .is_none_or(|q| (q.x - p.x).planar_hypot(q.y - p.y) > 1e-9)
             {
                 out.push(p);
             }
