@@ -176,26 +176,62 @@ impl Segment {
 
     /// The pose after `s` metres (0 ≤ s ≤ length).
     pub fn pose_at(&self, s: f64) -> Pose {
-        let g = self.gear.sign();
-        let p = self.start;
-        let heading = self.heading_at(s);
-        if self.sharpness == 0.0 {
-            let k = self.curvature;
+        self.poses().at(s)
+    }
+
+    /// Its poses at many distances: [`Segment::pose_at`] with the sine and cosine of the start
+    /// heading found once, not at every pose.
+    pub fn poses(&self) -> Poses<'_> {
+        let (sin, cos) = self.start.heading.sin_cos();
+        Poses {
+            segment: self,
+            start_sin: sin,
+            start_cos: cos,
+        }
+    }
+}
+
+/// The poses along a [`Segment`], from [`Segment::poses`].
+#[derive(Debug, Clone, Copy)]
+pub struct Poses<'a> {
+    segment: &'a Segment,
+    start_sin: f64,
+    start_cos: f64,
+}
+
+impl Poses<'_> {
+    /// The pose after `s` metres (0 ≤ s ≤ length).
+    pub fn at(&self, s: f64) -> Pose {
+        let seg = self.segment;
+        let g = seg.gear.sign();
+        let p = seg.start;
+        let heading = seg.heading_at(s);
+        if seg.sharpness == 0.0 {
+            let k = seg.curvature;
+            if k == 0.0 {
+                return Pose::new(
+                    p.x + g * s * self.start_cos,
+                    p.y + g * s * self.start_sin,
+                    heading,
+                );
+            }
             if k.abs() * s < 1e-9 {
-                // A line (or an arc so flat it is one to a nanometre).
+                // An arc so flat it is a line to a nanometre.
                 let mid = p.heading + 0.5 * g * k * s;
                 return Pose::new(p.x + g * s * mid.cos(), p.y + g * s * mid.sin(), heading);
             }
             // dθ = g·k·ds: the position is the arc's chord.
             let r = 1.0 / k;
+            let (sin, cos) = heading.sin_cos();
             return Pose::new(
-                p.x + r * (heading.sin() - p.heading.sin()),
-                p.y - r * (heading.cos() - p.heading.cos()),
+                p.x + r * (sin - self.start_sin),
+                p.y - r * (cos - self.start_cos),
                 heading,
             );
         }
+
         // A clothoid: integrate (cos θ, sin θ) piecewise, each piece turning under a radian.
-        let turn = self.curvature.abs() * s + 0.5 * self.sharpness.abs() * s * s;
+        let turn = seg.curvature.abs() * s + 0.5 * seg.sharpness.abs() * s * s;
         let pieces = (turn.ceil() as usize)
             .clamp(1, 1000)
             .max((s / 20.0).ceil() as usize);
@@ -205,14 +241,16 @@ impl Segment {
             let a = i as f64 * h;
             for (t, w) in GAUSS {
                 let u = a + 0.5 * h * (t + 1.0);
-                let th = self.heading_at(u);
+                let th = seg.heading_at(u);
                 x += g * 0.5 * h * w * th.cos();
                 y += g * 0.5 * h * w * th.sin();
             }
         }
         Pose::new(x, y, heading)
     }
+}
 
+impl Segment {
     /// Where it ends.
     pub fn end(&self) -> Pose {
         self.pose_at(self.length)

@@ -104,6 +104,7 @@ pub fn sample(path: &Path, spacing: f64, v: &Vehicle) -> Samples {
             let g = piece.gear.sign();
             let (dy, dx) = piece.start.heading.sin_cos();
             let line_heading = compass_deg(piece.start.heading);
+            let poses = piece.poses();
             for i in first..=n {
                 let s = piece.length * i as f64 / n as f64;
                 if straight {
@@ -111,7 +112,7 @@ pub fn sample(path: &Path, spacing: f64, v: &Vehicle) -> Samples {
                     out.y.push(piece.start.y + g * dy * s);
                     out.heading_deg.push(line_heading);
                 } else {
-                    let p = piece.pose_at(s);
+                    let p = poses.at(s);
                     out.x.push(p.x);
                     out.y.push(p.y);
                     out.heading_deg.push(compass_deg(p.heading));

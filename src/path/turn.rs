@@ -499,9 +499,10 @@ pub fn chord_poses(s: &Segment) -> impl Iterator<Item = (Pose, f64)> + '_ {
     } else {
         1
     };
+    let poses = s.poses();
     (0..=n).map(move |i| {
         let at = s.length * i as f64 / n as f64;
-        (s.pose_at(at), s.curvature_at(at))
+        (poses.at(at), s.curvature_at(at))
     })
 }
 
