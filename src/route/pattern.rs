@@ -276,13 +276,34 @@ pub fn block_turning_m(
     } else {
         orders
     };
-    orders
-        .iter()
-        .map(|order| {
-            let w = ways(ids, swaths, order, turn_radius);
-            w.iter().map(|w| w.turning_m).sum::<f64>() / w.len().max(1) as f64
-        })
-        .fold(f64::INFINITY, f64::min)
+    // The mean over the four ways of `ways`, without building them: planning asks this for
+    // every block of every direction a decomposition tries.
+    let n = ids.len();
+    let mut forward: Vec<usize> = Vec::with_capacity(n);
+    let mut mirrored: Vec<usize> = Vec::with_capacity(n);
+    let mut least = f64::INFINITY;
+    for order in orders {
+        let positions = order.positions(n);
+        forward.clear();
+        forward.extend(positions.iter().filter_map(|&p| ids.get(p).copied()));
+        mirrored.clear();
+        mirrored.extend(
+            positions
+                .iter()
+                .filter_map(|&p| n.checked_sub(1 + p).and_then(|k| ids.get(k).copied())),
+        );
+        let mut total = 0.0;
+        for sequence in [&forward, &mirrored] {
+            for first_reversed in [false, true] {
+                total += turning_of(sequence, first_reversed, swaths, turn_radius);
+            }
+        }
+        let mean = total / 4.0;
+        if mean < least {
+            least = mean;
+        }
+    }
+    least
 }
 
 /// The turn model's length of the turns of swaths worked in this sequence, metres.
