@@ -456,9 +456,11 @@ fn covered_area(swaths: &[Swath], width: f64, area: &MultiPolygon) -> f64 {
     }
     samples.shared_sort_by(|a, b| a.0.total_cmp(&b.0));
     let offsets: Vec<f64> = samples.iter().map(|s| s.0).collect();
-    let chords = frame.clip(area, &offsets);
     let mut covered = 0.0;
-    for (&(c, i, weight), chord) in samples.iter().zip(&chords) {
+    frame.clip_each(area, &offsets, |k, chord| {
+        let Some(&(c, i, weight)) = samples.get(k) else {
+            return;
+        };
         let own = &lines[i].1;
         let mut length = overlap_length(own, chord);
         // Where the previous line's strip also reaches, count only what it leaves.
@@ -468,7 +470,7 @@ fn covered_area(swaths: &[Swath], width: f64, area: &MultiPolygon) -> f64 {
             }
         }
         covered += length * weight;
-    }
+    });
     covered
 }
 

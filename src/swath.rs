@@ -346,8 +346,11 @@ pub fn generate_with(area: &MultiPolygon, settings: &SwathSettings) -> Result<Sw
             LinePlacement::Aligned { across } => aligned_offsets(lo, hi, width, across),
         };
         let offsets: Vec<f64> = placed.iter().map(|l| l.0).collect();
-        let pieces = frame.clip(area, &offsets);
-        for (line_index, (&(across, leftover), line)) in placed.iter().zip(&pieces).enumerate() {
+        let mut merged: Vec<(f64, f64)> = Vec::new();
+        frame.clip_each(area, &offsets, |line_index, line| {
+            let Some(&(across, leftover)) = placed.get(line_index) else {
+                return;
+            };
             // A leftover line's strip overlaps the strip of the line beside it.
             let overlap_m = if leftover {
                 let gap = |j: Option<&(f64, bool)>| j.map_or(width, |n| (n.0 - across).abs());
@@ -357,7 +360,8 @@ pub fn generate_with(area: &MultiPolygon, settings: &SwathSettings) -> Result<Sw
             } else {
                 0.0
             };
-            for (a0, a1) in merge_touching(line) {
+            merge_touching(line, &mut merged);
+            for &(a0, a1) in &merged {
                 if a1 - a0 < min_length.max(1e-6) {
                     dropped += 1;
                     continue;
@@ -373,7 +377,7 @@ pub fn generate_with(area: &MultiPolygon, settings: &SwathSettings) -> Result<Sw
                     along: (a0, a1),
                 });
             }
-        }
+        });
     }
     Ok(Swaths {
         bearing,
@@ -386,16 +390,15 @@ pub fn generate_with(area: &MultiPolygon, settings: &SwathSettings) -> Result<Sw
     })
 }
 
-/// Pieces of one line with the gaps under [`MERGE_GAP_M`] closed.
-fn merge_touching(pieces: &[(f64, f64)]) -> Vec<(f64, f64)> {
-    let mut out: Vec<(f64, f64)> = Vec::with_capacity(pieces.len());
+/// Pieces of one line with the gaps under [`MERGE_GAP_M`] closed, into `out` (cleared first).
+fn merge_touching(pieces: &[(f64, f64)], out: &mut Vec<(f64, f64)>) {
+    out.clear();
     for &(a0, a1) in pieces {
         match out.last_mut() {
             Some(last) if a0 - last.1 < MERGE_GAP_M => last.1 = last.1.max(a1),
             _ => out.push((a0, a1)),
         }
     }
-    out
 }
 
 impl Swaths {

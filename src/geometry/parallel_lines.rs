@@ -102,6 +102,31 @@ impl SweepFrame {
     /// assert_eq!(pieces[2], vec![(0.0, 10.0)]);
     /// ```
     pub fn clip(&self, polygons: &MultiPolygon, offsets: &[f64]) -> Vec<Vec<(f64, f64)>> {
+        let mut out = Vec::with_capacity(offsets.len());
+        self.clip_each(polygons, offsets, |_, pieces| out.push(pieces.to_vec()));
+        out
+    }
+
+    /// [`SweepFrame::clip`] without a list per line: calls `each(line, pieces)` for every line
+    /// in order, the pieces in a buffer it reuses.
+    ///
+    /// ```
+    /// use furrow::geometry::SweepFrame;
+    /// use geo::{polygon, MultiPolygon};
+    ///
+    /// let square = polygon![(x: 0., y: 0.), (x: 10., y: 0.), (x: 10., y: 10.), (x: 0., y: 10.)];
+    /// let mut total = 0.0;
+    /// SweepFrame::new(0.0).clip_each(&MultiPolygon::new(vec![square]), &[2.0, 8.0], |_, pieces| {
+    ///     total += pieces.iter().map(|(a0, a1)| a1 - a0).sum::<f64>();
+    /// });
+    /// assert_eq!(total, 20.0);
+    /// ```
+    pub fn clip_each(
+        &self,
+        polygons: &MultiPolygon,
+        offsets: &[f64],
+        mut each: impl FnMut(usize, &[(f64, f64)]),
+    ) {
         let mut edges = Vec::new();
         for p in polygons.0.iter() {
             for ring in std::iter::once(p.exterior()).chain(p.interiors().iter()) {
@@ -125,11 +150,11 @@ impl SweepFrame {
         }
         edges.shared_sort_unstable_by(|e, f| e.low.total_cmp(&f.low));
 
-        let mut out = Vec::with_capacity(offsets.len());
         let mut active: Vec<SweepEdge> = Vec::new();
         let mut next = 0;
         let mut crossings: Vec<f64> = Vec::new();
-        for &c in offsets {
+        let mut pieces: Vec<(f64, f64)> = Vec::new();
+        for (line, &c) in offsets.iter().enumerate() {
             while next < edges.len() && edges[next].low <= c {
                 active.push(edges[next]);
                 next += 1;
@@ -145,14 +170,15 @@ impl SweepFrame {
                 }
             }
             crossings.shared_sort_unstable_by(f64::total_cmp);
-            let pieces = crossings
-                .chunks_exact(2)
-                .filter(|pair| pair[1] > pair[0])
-                .map(|pair| (pair[0], pair[1]))
-                .collect();
-            out.push(pieces);
+            pieces.clear();
+            pieces.extend(
+                crossings
+                    .chunks_exact(2)
+                    .filter(|pair| pair[1] > pair[0])
+                    .map(|pair| (pair[0], pair[1])),
+            );
+            each(line, &pieces);
         }
-        out
     }
 }
 
