@@ -8,8 +8,8 @@
 //!   the crop: the headland passes round the field and the obstacles, joined where they meet.
 //! - [`sequence`]: the order of the blocks and the way each is worked, as a travelling-salesman
 //!   problem over the blocks' entry and exit points (Zhou et al. 2.4): exact by dynamic
-//!   programming up to [`sequence::EXACT_MAX_BLOCKS`] blocks, by ant colony and local search
-//!   beyond.
+//!   programming while its table is small (up to 11 blocks of four ways), by ant colony and
+//!   local search beyond.
 //!
 //! The headland passes come last, as in seeding (Zhou et al. 2.1), from the innermost out, so the
 //! machine finishes on the outermost pass at the field edge; or first, as in harvesting, from the
@@ -136,7 +136,7 @@ pub struct RouteSettings {
     pub entrance: Option<Coord>,
     /// Where the route ends (local metres).
     pub exit: Option<Coord>,
-    /// Seed of the ant colony (for more than [`sequence::EXACT_MAX_BLOCKS`] blocks).
+    /// Seed of the ant colony (for block orders too large to solve exactly).
     pub seed: u64,
 }
 

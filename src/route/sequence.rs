@@ -34,8 +34,8 @@
 //!   worked and on where it stands, the exit of its last way: every completion of it costs the
 //!   same whatever order came before. So `best[set][way]`, filled for the sets in increasing
 //!   order, each from the sets one block smaller, is exact, in `O(2^blocks x blocks^2 x ways^2)`
-//!   time and `O(2^blocks x blocks x ways)` memory: about 3 ms at [`EXACT_MAX_BLOCKS`] blocks of
-//!   four ways natively (release), about 10 ms in WebAssembly.
+//!   time and `O(2^blocks x blocks x ways)` memory: about 3 ms at 12 blocks of four ways natively
+//!   (release), about 10 ms in WebAssembly.
 //! - [`solve_heuristic`]: above that, the ant colony of Zhou et al. (Ant System, Dorigo 1996) over
 //!   the (block, way) nodes, with their parameters `rho = 0.5, alpha = 1, beta = 5` and as many
 //!   ants as nodes (capped, see [`AntColony`]); each ant walks from node to node through blocks
@@ -164,11 +164,12 @@ pub const LARGE_COST: f64 = 1e12;
 pub const EXACT_MAX_BLOCKS: usize = 12;
 
 /// The most steps (`2^blocks x ways^2`, about twice the additions its table takes) for which
-/// [`solve`] takes the exact answer rather than the heuristic: 12 blocks of four ways each
-/// (`4096 x 48^2`, 9.4 million) are exact, 12 blocks of eight (when blocks may also end by
-/// driving back along their last swath) are not. In WebAssembly the first takes about 10 ms,
-/// the second 25, the ant colony under 2.
-const EXACT_MAX_WORK: usize = 10_000_000;
+/// [`solve`] takes the exact answer rather than the heuristic: 11 blocks of four ways each
+/// (`2048 x 44^2`, 4 million) are exact, 12 (`4096 x 48^2`, 9.4 million) are not. In
+/// WebAssembly those 12 took about 10 ms exactly, 25 with eight ways (blocks that may also end
+/// by driving back along their last swath), the ant colony under 2; on the corpus the colony
+/// found the exact cost wherever the limit changed the solver.
+const EXACT_MAX_WORK: usize = 5_000_000;
 
 /// [`exhaustive`] enumerates every permutation up to this many blocks.
 pub const EXHAUSTIVE_MAX_BLOCKS: usize = 9;
