@@ -169,7 +169,7 @@ pub const EXACT_MAX_BLOCKS: usize = 12;
 /// WebAssembly those 12 took about 10 ms exactly, 25 with eight ways (blocks that may also end
 /// by driving back along their last swath), the ant colony under 2; on the corpus the colony
 /// found the exact cost wherever the limit changed the solver.
-const EXACT_MAX_WORK: usize = 5_000_000;
+pub const EXACT_MAX_WORK: usize = 5_000_000;
 
 /// [`exhaustive`] enumerates every permutation up to this many blocks.
 pub const EXHAUSTIVE_MAX_BLOCKS: usize = 9;
