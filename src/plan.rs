@@ -1011,3 +1011,68 @@ fn work(
         machine,
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use geo::MultiPolygon;
+    use std::f64::consts::PI;
+
+    fn block(ring: &[(f64, f64)], bearing: f64) -> BlockArea {
+        let exterior: Vec<geo::Coord> = ring.iter().map(|&(x, y)| geo::Coord { x, y }).collect();
+        BlockArea {
+            area: MultiPolygon::new(vec![geo::Polygon::new(exterior.into(), vec![])]),
+            bearing,
+        }
+    }
+
+    #[test]
+    fn seeds_with_the_same_blocks_are_the_same_decomposition() {
+        let west = [
+            (0.0, 0.0),
+            (50.0, 0.0),
+            (50.0, 80.0),
+            (0.0, 80.0),
+            (0.0, 0.0),
+        ];
+        // The same square, its ring starting at another corner.
+        let west_again = [
+            (50.0, 80.0),
+            (0.0, 80.0),
+            (0.0, 0.0),
+            (50.0, 0.0),
+            (50.0, 80.0),
+        ];
+        let east = [
+            (50.0, 0.0),
+            (90.0, 0.0),
+            (90.0, 80.0),
+            (50.0, 80.0),
+            (50.0, 0.0),
+        ];
+        let a = signatures(&[block(&west, 0.3), block(&east, 1.2)]);
+        // In the other order, a bearing and its reverse alike.
+        let b = signatures(&[block(&east, 1.2), block(&west_again, 0.3 + PI)]);
+        assert!(same_blocks(&a, &b));
+        // Another direction, another area, or another number of blocks: not the same.
+        assert!(!same_blocks(
+            &a,
+            &signatures(&[block(&west, 0.3), block(&east, 1.25)])
+        ));
+        let shifted = [
+            (50.0, 0.0),
+            (91.0, 0.0),
+            (91.0, 80.0),
+            (50.0, 80.0),
+            (50.0, 0.0),
+        ];
+        assert!(!same_blocks(
+            &a,
+            &signatures(&[block(&west, 0.3), block(&shifted, 1.2)])
+        ));
+        assert!(!same_blocks(&a, &signatures(&[block(&west, 0.3)])));
+        // Two copies of one block do not match one block and another.
+        let twice = signatures(&[block(&west, 0.3), block(&west, 0.3)]);
+        assert!(!same_blocks(&a, &twice));
+    }
+}

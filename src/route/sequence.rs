@@ -1659,6 +1659,17 @@ fn finish(
 mod tests {
     use super::*;
 
+    #[test]
+    fn exact_while_the_table_is_cheap() {
+        assert!(exact_pays(11, 44), "11 blocks of four ways: exact");
+        assert!(
+            !exact_pays(12, 48),
+            "12 blocks of four ways: the ant colony"
+        );
+        assert!(exact_pays(12, 12), "12 blocks of one way: exact");
+        assert!(!exact_pays(EXACT_MAX_BLOCKS + 1, EXACT_MAX_BLOCKS + 1));
+    }
+
     fn relative_gap(a: f64, b: f64) -> f64 {
         (a - b).abs() / b.abs().max(1.0)
     }
