@@ -1,6 +1,7 @@
 // Assembles target/bench/report.md from what scripts/bench.sh measured:
 //   target/bench/{quality,stages,scaling,wasm}.json (examples/report.rs, scripts/bench-wasm.mjs)
 //   target/criterion/plan/<field>/new/estimates.json (cargo bench --bench plan)
+//   target/criterion/stage-<stage>/<field>/new/estimates.json (cargo bench --bench stages)
 //
 //   node scripts/bench-report.mjs
 import { existsSync, readFileSync, writeFileSync } from "node:fs";
@@ -20,13 +21,14 @@ const stages = read("stages.json").fields;
 const scaling = read("scaling.json");
 const wasm = read("wasm.json");
 
-/** Criterion's median of the whole plan (ms), by field name, where it was run. */
-function criterion(name) {
-  const path = join("target/criterion/plan", name, "new/estimates.json");
+/** Criterion's median (ms) of a benchmark in `group`, by field name, where it was run. */
+function criterion(name, group = "plan") {
+  const path = join("target/criterion", group, name, "new/estimates.json");
   if (!existsSync(path)) return null;
   const e = JSON.parse(readFileSync(path, "utf8"));
   return e.median.point_estimate / 1e6;
 }
+const STAGE_BENCHES = ["validation", "route", "path", "output"];
 
 const byName = (list) => new Map(list.map((r) => [String(r.field).replace(/\.geojson$/, ""), r]));
 const node = byName(wasm.node);
@@ -97,6 +99,12 @@ ${rows
 ## Stages
 
 ${readText("stages.md")}
+The stages that run alone, natively (criterion median, \`benches/stages.rs\`), milliseconds: reading, checking and simplifying the field, and, from the finished plan, the route, the path and the GeoJSON text of the decomposition auto chose (once, where the stage clocks above count every candidate auto compares).
+
+| field | ${STAGE_BENCHES.join(" | ")} |
+|---|${STAGE_BENCHES.map(() => "---:").join("|")}|
+${rows.map((r) => `| ${r.name} | ${STAGE_BENCHES.map((st) => f(criterion(r.name, `stage-${st}`), 3)).join(" | ")} |`).join("\n")}
+
 ## Scaling
 
 ${readText("scaling.md")}
