@@ -24,7 +24,7 @@ measure=(--warm-up-time 1 --measurement-time 2 --sample-size 10)
 cargo bench --quiet --bench plan -- "${measure[@]}" 'plan/' | grep -E '^plan/|time:' || true
 cargo bench --quiet --bench tracks -- "${measure[@]}" | grep -E '^track|time:' || true
 echo "== the stages that run alone natively (criterion)"
-stage_measure=(--warm-up-time 0.5 --measurement-time 1 --sample-size 10)
+stage_measure=(--warm-up-time 0.3 --measurement-time 0.5 --sample-size 10)
 [[ "${QUICK:-}" == 1 ]] && stage_measure=(--warm-up-time 0.2 --measurement-time 0.3 --sample-size 10)
 cargo bench --quiet --bench stages -- "${stage_measure[@]}" | grep -E '^stage|time:' || true
 echo "== the wasm package in Node and Chromium"
