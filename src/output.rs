@@ -23,8 +23,10 @@
 //! `summary` ([`Summary`]) and `warnings` (a list of `{code, message, feature?}`).
 
 use crate::error::Warning;
+use crate::field::projection::{NearOutput, NEAR_M};
 use crate::field::Frame;
 use crate::geometry::bearing_of;
+use crate::geometry::PlanarHypot;
 use crate::metrics::Summary;
 use crate::obstacles::ObstacleClass;
 use crate::path::curve::Gear;
@@ -294,9 +296,9 @@ impl Plan {
                 p.block = self.block_before(sequence);
             }
             let line = if points.is_empty() {
-                out.line(&seg.line)
+                out.points(seg.line.0.iter().copied())
             } else {
-                points.iter().map(|&c| out.frame.to_output(c)).collect()
+                out.points(points.iter().copied())
             };
             features.push(out.feature(p, Geometry::LineString(line)));
         }
@@ -392,6 +394,27 @@ impl Output<'_> {
 
     fn line(&self, l: &LineString) -> Vec<[f64; 2]> {
         l.0.iter().map(|&c| self.frame.to_output(c)).collect()
+    }
+
+    /// Output coordinates of points along the path: the projection exact every [`NEAR_M`] or
+    /// less and affine in between (within 0.3 mm, as the samples are converted), which spares
+    /// a projection per vertex of the densely drawn turns and connections. (The field's own
+    /// outlines keep the exact projection of every vertex.)
+    fn points(&self, points: impl Iterator<Item = Coord>) -> Vec<[f64; 2]> {
+        let mut near: Option<NearOutput> = None;
+        points
+            .map(|q| {
+                let map = match near {
+                    Some(n) if (q.x - n.origin.x).planar_hypot(q.y - n.origin.y) < NEAR_M => n,
+                    _ => {
+                        let n = self.frame.output_near(q);
+                        near = Some(n);
+                        n
+                    }
+                };
+                map.apply(q)
+            })
+            .collect()
     }
 
     fn polygon(&self, p: &Polygon) -> Geometry {
