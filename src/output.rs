@@ -23,10 +23,9 @@
 //! `summary` ([`Summary`]) and `warnings` (a list of `{code, message, feature?}`).
 
 use crate::error::Warning;
-use crate::field::projection::{NearOutput, NEAR_M};
+use crate::field::projection::OutputAlong;
 use crate::field::Frame;
 use crate::geometry::bearing_of;
-use crate::geometry::PlanarHypot;
 use crate::metrics::Summary;
 use crate::obstacles::ObstacleClass;
 use crate::path::curve::Gear;
@@ -396,25 +395,13 @@ impl Output<'_> {
         l.0.iter().map(|&c| self.frame.to_output(c)).collect()
     }
 
-    /// Output coordinates of points along the path: the projection exact every [`NEAR_M`] or
-    /// less and affine in between (within 0.3 mm, as the samples are converted), which spares
+    /// Output coordinates of points along the path ([`OutputAlong`]): the projection exact every
+    /// few tens of metres and affine in between (within 0.3 mm, as the samples), which spares
     /// a projection per vertex of the densely drawn turns and connections. (The field's own
     /// outlines keep the exact projection of every vertex.)
     fn points(&self, points: impl Iterator<Item = Coord>) -> Vec<[f64; 2]> {
-        let mut near: Option<NearOutput> = None;
-        points
-            .map(|q| {
-                let map = match near {
-                    Some(n) if (q.x - n.origin.x).planar_hypot(q.y - n.origin.y) < NEAR_M => n,
-                    _ => {
-                        let n = self.frame.output_near(q);
-                        near = Some(n);
-                        n
-                    }
-                };
-                map.apply(q)
-            })
-            .collect()
+        let mut along = OutputAlong::new(self.frame);
+        points.map(|q| along.convert(q)).collect()
     }
 
     fn polygon(&self, p: &Polygon) -> Geometry {

@@ -17,7 +17,7 @@ use crate::direction::{
     AreaSearch, DirectionMode, DirectionRule, SearchMethod,
 };
 use crate::error::{ErrorCode, PlanError, Warning, WarningCode};
-use crate::field::projection::{NearOutput, NEAR_M};
+use crate::field::projection::OutputAlong;
 use crate::field::simplify::tolerance_for_width;
 use crate::field::{Field, ProhibitedRegion};
 use crate::geometry::forbids_every_direction;
@@ -108,20 +108,9 @@ impl Plan {
         );
         // The projection is smooth: exact every few tens of metres, affine in between (within
         // 0.3 mm of the exact conversion, 40 times faster).
-        let mut near: Option<NearOutput> = None;
+        let mut along = OutputAlong::new(&self.field.frame);
         for (x, y) in s.x.iter_mut().zip(s.y.iter_mut()) {
-            let q = geo::Coord { x: *x, y: *y };
-            let map = match near {
-                Some(n) if (q.x - n.origin.x).planar_hypot(q.y - n.origin.y) < NEAR_M => n,
-                _ => {
-                    let n = self.field.frame.output_near(q);
-                    near = Some(n);
-                    n
-                }
-            };
-            let [ox, oy] = map.apply(q);
-            *x = ox;
-            *y = oy;
+            [*x, *y] = along.convert(geo::Coord { x: *x, y: *y });
         }
         s
     }

@@ -10,6 +10,7 @@
 //! Grid north and true north agree on the central meridian; 1 km east or west of it they differ by
 //! about `0.009° · sin(latitude)`, so compass bearings can be used in the frame unchanged.
 
+use crate::geometry::PlanarHypot;
 use geo::Coord;
 
 /// WGS84 semi-major axis in metres.
@@ -303,6 +304,35 @@ impl NearOutput {
     }
 }
 
+/// Output coordinates of many points in a row, each near the one before (a sampled path, the
+/// vertices of a turn): a [`NearOutput`] from the last exact point while within [`NEAR_M`] of
+/// it, a new one (five projections) beyond.
+#[derive(Debug, Clone)]
+pub struct OutputAlong<'a> {
+    frame: &'a Frame,
+    near: Option<NearOutput>,
+}
+
+impl<'a> OutputAlong<'a> {
+    /// Conversions in `frame`, starting afresh.
+    pub fn new(frame: &'a Frame) -> Self {
+        OutputAlong { frame, near: None }
+    }
+
+    /// Output coordinates of `q`, within 0.3 mm of [`Frame::to_output`].
+    pub fn convert(&mut self, q: Coord) -> [f64; 2] {
+        let map = match self.near {
+            Some(n) if (q.x - n.origin.x).planar_hypot(q.y - n.origin.y) < NEAR_M => n,
+            _ => {
+                let n = self.frame.output_near(q);
+                self.near = Some(n);
+                n
+            }
+        };
+        map.apply(q)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -325,6 +355,33 @@ mod tests {
                     (a[0] - b[0]).abs() <= 3e-9 && (a[1] - b[1]).abs() <= 3e-9,
                     "{a:?} {b:?}"
                 );
+            }
+        }
+    }
+
+    #[test]
+    fn points_in_a_row_convert_within_the_output_rounding_and_exactly_where_a_map_starts() {
+        let frame = Frame::Wgs84(TransverseMercator::centred_at(24.05, 60.25));
+        let mut along = OutputAlong::new(&frame);
+        // A kilometre of path every half metre, then a jump far away.
+        let mut points: Vec<Coord> = (0..2000)
+            .map(|i| Coord {
+                x: 300.0 + 0.3 * i as f64,
+                y: -200.0 + 0.4 * i as f64,
+            })
+            .collect();
+        points.push(Coord {
+            x: 9000.0,
+            y: 7000.0,
+        });
+        for (i, &q) in points.iter().enumerate() {
+            let (a, b) = (along.convert(q), frame.to_output(q));
+            assert!(
+                (a[0] - b[0]).abs() <= 3e-9 && (a[1] - b[1]).abs() <= 3e-9,
+                "{i}: {a:?} {b:?}"
+            );
+            if i == 0 || i == points.len() - 1 {
+                assert_eq!(a, b, "a new map is exact at its origin");
             }
         }
     }

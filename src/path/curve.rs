@@ -189,6 +189,18 @@ impl Segment {
             start_cos: cos,
         }
     }
+
+    /// Where it ends.
+    pub fn end(&self) -> Pose {
+        self.pose_at(self.length)
+    }
+
+    /// The largest steering curvature on it, in size.
+    pub fn max_curvature(&self) -> f64 {
+        self.curvature
+            .abs()
+            .max(self.curvature_at(self.length).abs())
+    }
 }
 
 /// The poses along a [`Segment`], from [`Segment::poses`].
@@ -229,7 +241,6 @@ impl Poses<'_> {
                 heading,
             );
         }
-
         // A clothoid: integrate (cos θ, sin θ) piecewise, each piece turning under a radian.
         let turn = seg.curvature.abs() * s + 0.5 * seg.sharpness.abs() * s * s;
         let pieces = (turn.ceil() as usize)
@@ -247,20 +258,6 @@ impl Poses<'_> {
             }
         }
         Pose::new(x, y, heading)
-    }
-}
-
-impl Segment {
-    /// Where it ends.
-    pub fn end(&self) -> Pose {
-        self.pose_at(self.length)
-    }
-
-    /// The largest steering curvature on it, in size.
-    pub fn max_curvature(&self) -> f64 {
-        self.curvature
-            .abs()
-            .max(self.curvature_at(self.length).abs())
     }
 }
 

@@ -219,15 +219,8 @@ pub fn ways(
     order: &SwathOrder,
     turn_radius: f64,
 ) -> Vec<BlockWay> {
-    let positions = order.positions(ids.len());
-    let forward: Vec<usize> = positions
-        .iter()
-        .filter_map(|&p| ids.get(p).copied())
-        .collect();
-    let mirrored: Vec<usize> = positions
-        .iter()
-        .filter_map(|&p| ids.get(ids.len() - 1 - p).copied())
-        .collect();
+    let (mut forward, mut mirrored) = (Vec::new(), Vec::new());
+    sequences(ids, order, &mut forward, &mut mirrored);
     let mut out = Vec::with_capacity(4);
     for sequence in [forward, mirrored] {
         for first_reversed in [false, true] {
@@ -278,20 +271,11 @@ pub fn block_turning_m(
     };
     // The mean over the four ways of `ways`, without building them: planning asks this for
     // every block of every direction a decomposition tries.
-    let n = ids.len();
-    let mut forward: Vec<usize> = Vec::with_capacity(n);
-    let mut mirrored: Vec<usize> = Vec::with_capacity(n);
+    let mut forward: Vec<usize> = Vec::with_capacity(ids.len());
+    let mut mirrored: Vec<usize> = Vec::with_capacity(ids.len());
     let mut least = f64::INFINITY;
     for order in orders {
-        let positions = order.positions(n);
-        forward.clear();
-        forward.extend(positions.iter().filter_map(|&p| ids.get(p).copied()));
-        mirrored.clear();
-        mirrored.extend(
-            positions
-                .iter()
-                .filter_map(|&p| n.checked_sub(1 + p).and_then(|k| ids.get(k).copied())),
-        );
+        sequences(ids, order, &mut forward, &mut mirrored);
         let mut total = 0.0;
         for sequence in [&forward, &mirrored] {
             for first_reversed in [false, true] {
@@ -304,6 +288,26 @@ pub fn block_turning_m(
         }
     }
     least
+}
+
+/// The swaths of a block (`ids`, in line order) in `order` from its first line across
+/// (`forward`) and from its last (`mirrored`), into the two lists (cleared first).
+fn sequences(
+    ids: &[usize],
+    order: &SwathOrder,
+    forward: &mut Vec<usize>,
+    mirrored: &mut Vec<usize>,
+) {
+    let n = ids.len();
+    let positions = order.positions(n);
+    forward.clear();
+    forward.extend(positions.iter().filter_map(|&p| ids.get(p).copied()));
+    mirrored.clear();
+    mirrored.extend(
+        positions
+            .iter()
+            .filter_map(|&p| n.checked_sub(1 + p).and_then(|k| ids.get(k).copied())),
+    );
 }
 
 /// The turn model's length of the turns of swaths worked in this sequence, metres.
