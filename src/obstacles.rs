@@ -20,6 +20,7 @@
 use crate::field::Field;
 use crate::geometry::{point_segment_distance, SweepFrame};
 use crate::headland::offset::drop_slivers;
+use crate::sort::SharedSort;
 use geo::{BooleanOps, ConvexHull, Coord, Distance, Euclidean, MultiPolygon, Polygon};
 use serde::Serialize;
 
@@ -146,7 +147,7 @@ pub fn classify(field: &Field, s: &ClassSettings) -> ObstacleClasses {
                     let (members_b, _) = groups.remove(b);
                     let members = &mut groups[a].0;
                     members.extend(members_b);
-                    members.sort_unstable();
+                    members.shared_sort_unstable_by(Ord::cmp);
                     let hull = MultiPolygon::new(
                         members
                             .iter()

@@ -37,7 +37,7 @@ use crate::path::turn::Area as DrivingArea;
 use crate::path::{build_path, Path};
 use crate::prohibited::{forbidding, split};
 use crate::route::{pattern::candidates, plan_route, Route, RouteSettings};
-use crate::swath::{generate_with, lifts, LinePlacement, SwathArea, SwathSettings, Swaths};
+use crate::swath::{generate_with, lifts, LinePlacement, Swath, SwathArea, SwathSettings, Swaths};
 use geo::{Area, BooleanOps, BoundingRect, Centroid};
 use web_time::Instant;
 
@@ -365,6 +365,7 @@ pub(crate) fn plan_stages(
                     &prepared,
                     m,
                     Some(sm),
+                    None,
                     &mut times,
                 )?;
                 if best
@@ -379,8 +380,12 @@ pub(crate) fn plan_stages(
                 candidates.push(b);
             }
         } else {
+            // Boustrophedon cells often cluster the swaths into the blocks of `none`, in the
+            // same order, only numbered cell by cell: its route and path are then those of
+            // `none`.
+            let same_as = candidates.iter().find(|c| c.method == Decomposition::None);
             candidates.push(work(
-                &field, options, &obstacles, &prepared, m, None, &mut times,
+                &field, options, &obstacles, &prepared, m, None, same_as, &mut times,
             )?);
         }
     }
@@ -817,7 +822,37 @@ fn same_blocks(a: &[BlockSignature], b: &[BlockSignature]) -> bool {
     })
 }
 
-/// Decomposes the inner field, lays the swaths, and routes, paths and measures the plan.
+/// Where the blocks of `b` are those of `a` in the same order, of the same swaths in the same
+/// order (numbered otherwise), the index in `b` of each swath of `a` that a block holds.
+fn renumbering(
+    a: &Swaths,
+    a_blocks: &Blocks,
+    b: &Swaths,
+    b_blocks: &Blocks,
+) -> Option<Vec<Option<usize>>> {
+    if a_blocks.blocks.len() != b_blocks.blocks.len() || a.swaths.len() != b.swaths.len() {
+        return None;
+    }
+    let mut new_index = vec![None; a.swaths.len()];
+    for (x, y) in a_blocks.blocks.iter().zip(&b_blocks.blocks) {
+        if x.bearing != y.bearing || x.swaths.len() != y.swaths.len() {
+            return None;
+        }
+        for (&i, &j) in x.swaths.iter().zip(&y.swaths) {
+            let (s, t) = (a.swaths.get(i)?, b.swaths.get(j)?);
+            if (Swath { index: j, ..*s }) != *t {
+                return None;
+            }
+            *new_index.get_mut(i)? = Some(j);
+        }
+    }
+    Some(new_index)
+}
+
+/// Decomposes the inner field, lays the swaths, and routes, paths and measures the plan. Where
+/// the blocks are those of `same_as` (a candidate worked before) with their swaths numbered
+/// otherwise, its route (renumbered) and path are taken: they depend on nothing else.
+#[allow(clippy::too_many_arguments)]
 fn work(
     field: &Field,
     options: &PlanOptions,
@@ -825,6 +860,7 @@ fn work(
     prep: &Prepared,
     method: Decomposition,
     split: Option<SplitMerge>,
+    same_as: Option<&Worked>,
     times: &mut StageTimes,
 ) -> Result<Worked, PlanError> {
     let mut clock = Instant::now();
@@ -928,12 +964,22 @@ fn work(
     }
     let blocks = cluster_swaths(&swaths);
     times.lap(&mut clock, |t| &mut t.decomposition);
-    let route = plan_route(
-        &swaths,
-        &blocks,
-        &headlands.passes,
-        &route_settings(options, field),
-    );
+    let earlier = same_as.and_then(|w| {
+        if w.headlands.passes != headlands.passes {
+            return None;
+        }
+        let new_index = renumbering(&w.swaths, &w.blocks, &swaths, &blocks)?;
+        Some((w.route.with_swaths_renumbered(&new_index)?, &w.path))
+    });
+    let route = match &earlier {
+        Some((route, _)) => route.clone(),
+        None => plan_route(
+            &swaths,
+            &blocks,
+            &headlands.passes,
+            &route_settings(options, field),
+        ),
+    };
     times.lap(&mut clock, |t| &mut t.route);
     let straight = route.all_connections().filter(|c| c.straight).count();
     if straight > 0 {
@@ -950,13 +996,16 @@ fn work(
             ),
         ));
     }
-    let path = build_path(
-        &route,
-        &swaths,
-        &headlands.passes,
-        &options.vehicle(),
-        Some(&prep.area),
-    );
+    let path = match earlier {
+        Some((_, path)) => path.clone(),
+        None => build_path(
+            &route,
+            &swaths,
+            &headlands.passes,
+            &options.vehicle(),
+            Some(&prep.area),
+        ),
+    };
     times.lap(&mut clock, |t| &mut t.path);
     if let Some(w) = turns_leaving(&path, options) {
         warnings.push(w);
@@ -1063,5 +1112,57 @@ mod tests {
         // Two copies of one block do not match one block and another.
         let twice = signatures(&[block(&west, 0.3), block(&west, 0.3)]);
         assert!(!same_blocks(&a, &twice));
+    }
+
+    #[test]
+    fn a_route_renumbered_is_the_route_of_the_same_blocks_numbered_otherwise() {
+        // On obstacles-4 the boustrophedon cells hold the blocks of `none`, in the same order,
+        // their swaths numbered cell by cell.
+        let path = concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/tests/fields/obstacles-4.geojson"
+        );
+        let text = std::fs::read_to_string(path).expect("the corpus copy");
+        let options = PlanOptions {
+            width: 12.0,
+            headland_passes: 1,
+            turn_radius: 6.0,
+            decomposition: Decomposition::None,
+            ..PlanOptions::default()
+        };
+        let none = plan_geojson(&text, &options).expect("plans");
+        let mut cells = none.swaths.clone();
+        let main = &none.swaths.areas[0];
+        let tolerance = none.options.width * DECOMPOSITION_TOLERANCE;
+        cluster_into_cells(
+            &mut cells,
+            &boustrophedon::decompose(&main.area, main.bearing, tolerance),
+        );
+        let cell_blocks = cluster_swaths(&cells);
+        let new_index =
+            renumbering(&none.swaths, &none.blocks, &cells, &cell_blocks).expect("the same blocks");
+        let moved = new_index
+            .iter()
+            .enumerate()
+            .filter(|&(i, j)| *j != Some(i))
+            .count();
+        assert!(
+            moved > 10,
+            "the cells number the swaths otherwise ({moved} moved)"
+        );
+        let fresh = plan_route(
+            &cells,
+            &cell_blocks,
+            &none.headlands.passes,
+            &route_settings(&none.options, &none.field),
+        );
+        assert_eq!(none.route.with_swaths_renumbered(&new_index), Some(fresh));
+        // Blocks that differ are not renumbered.
+        let mut fewer = cell_blocks.clone();
+        fewer.blocks.pop();
+        assert!(renumbering(&none.swaths, &none.blocks, &cells, &fewer).is_none());
+        let mut other = cell_blocks;
+        other.blocks[0].swaths.reverse();
+        assert!(renumbering(&none.swaths, &none.blocks, &cells, &other).is_none());
     }
 }

@@ -1,11 +1,13 @@
-//! Sorting with one copy of the standard library's sort per element type.
+//! Sorting with one copy of the standard library's sort for the whole crate.
 //!
-//! `slice::sort_by` is generic over its comparator, so every call with a closure of its own
-//! compiles a sort of its own (driftsort or quicksort with their small-sort networks, 10 to
-//! 25 KB of WebAssembly each). Through [`SharedSort`] the comparator is passed as a `dyn`
-//! reference instead: all calls for one element type share one sort. The order is exactly that
-//! of the standard sorts (`shared_sort_by` is stable, `shared_sort_unstable_by` is not); only an
-//! indirect call per comparison is added, which the planner's short lists do not notice.
+//! `slice::sort_by` is generic over its element type and its comparator, so every call with a
+//! closure of its own compiles a sort of its own (driftsort or quicksort with their small-sort
+//! networks, 10 to 25 KB of WebAssembly each). Through [`SharedSort`] the comparator is passed
+//! as a `dyn` reference, and a slice of more than 20 elements is sorted through the positions
+//! of its elements (`usize`, by one stable and one unstable sort for the crate), then put in
+//! that order in place; shorter slices are sorted by insertion, a few hundred bytes per element
+//! type. The stable sorts give exactly the order of `slice::sort_by`; the unstable one may
+//! order equal elements otherwise than `slice::sort_unstable_by` (neither says how).
 //!
 //! ```
 //! use furrow::sort::SharedSort;
@@ -45,14 +47,68 @@ impl<T> SharedSort<T> for [T] {
     }
 }
 
-#[inline(never)]
+/// Up to this many elements a slice is sorted in place by insertion (a few hundred bytes of
+/// code per element type); longer ones through their positions, by the crate's one sort.
+const INSERTION_MAX: usize = 20;
+
 fn stable<T>(v: &mut [T], compare: &mut dyn FnMut(&T, &T) -> Ordering) {
-    v.sort_by(|a, b| compare(a, b));
+    if v.len() <= INSERTION_MAX {
+        insertion_sort(v, compare);
+        return;
+    }
+    let mut order: Vec<usize> = (0..v.len()).collect();
+    sort_positions(&mut order, &mut |i, j| compare(&v[i], &v[j]));
+    permute(v, &mut order);
 }
 
-#[inline(never)]
 fn unstable<T>(v: &mut [T], compare: &mut dyn FnMut(&T, &T) -> Ordering) {
-    v.sort_unstable_by(|a, b| compare(a, b));
+    if v.len() <= INSERTION_MAX {
+        insertion_sort(v, compare);
+        return;
+    }
+    let mut order: Vec<usize> = (0..v.len()).collect();
+    sort_positions_unstable(&mut order, &mut |i, j| compare(&v[i], &v[j]));
+    permute(v, &mut order);
+}
+
+/// Stable: each element moves left past those greater than it.
+fn insertion_sort<T>(v: &mut [T], compare: &mut dyn FnMut(&T, &T) -> Ordering) {
+    for i in 1..v.len() {
+        let mut k = i;
+        while k > 0 && compare(&v[k - 1], &v[k]) == Ordering::Greater {
+            v.swap(k - 1, k);
+            k -= 1;
+        }
+    }
+}
+
+/// The one stable sort of the crate: positions, by what their elements compare.
+#[inline(never)]
+fn sort_positions(order: &mut [usize], compare: &mut dyn FnMut(usize, usize) -> Ordering) {
+    order.sort_by(|&a, &b| compare(a, b));
+}
+
+/// The one unstable sort of the crate.
+#[inline(never)]
+fn sort_positions_unstable(order: &mut [usize], compare: &mut dyn FnMut(usize, usize) -> Ordering) {
+    order.sort_unstable_by(|&a, &b| compare(a, b));
+}
+
+/// Rearranges `v` so that its element `k` is the one that was at `order[k]`, in place, by
+/// following the permutation's cycles (`order` is left as the identity).
+fn permute<T>(v: &mut [T], order: &mut [usize]) {
+    for start in 0..order.len() {
+        let mut k = start;
+        loop {
+            let from = order[k];
+            order[k] = k;
+            if from == start || from == k {
+                break;
+            }
+            v.swap(k, from);
+            k = from;
+        }
+    }
 }
 
 #[cfg(test)]
@@ -75,5 +131,35 @@ mod tests {
         let mut expected = keys;
         expected.sort_unstable();
         assert_eq!(unstable, expected);
+    }
+
+    #[test]
+    fn short_and_long_slices_with_ties_keep_the_stable_order() {
+        for n in [0, 1, 2, 5, INSERTION_MAX, INSERTION_MAX + 1, 64, 333] {
+            // Keys with many ties, and a payload that tells equal keys apart.
+            let items: Vec<(u32, String)> = (0..n as u32)
+                .map(|i| ((i * 7919) % 5, format!("item {i}")))
+                .collect();
+            let mut ours = items.clone();
+            ours.shared_sort_by(|a, b| a.0.cmp(&b.0));
+            let mut expected = items.clone();
+            expected.sort_by_key(|a| a.0);
+            assert_eq!(ours, expected, "{n} elements");
+            let mut descending = items.clone();
+            descending.shared_sort_unstable_by(|a, b| b.cmp(a));
+            let mut expected = items;
+            expected.sort_unstable_by(|a, b| b.cmp(a));
+            assert_eq!(descending, expected, "{n} elements, unstable (no ties)");
+        }
+    }
+
+    #[test]
+    fn permuting_follows_every_cycle() {
+        let mut v = vec!['a', 'b', 'c', 'd', 'e', 'f'];
+        // Element k becomes the one at order[k]: cycles (0 3 5), (1 2) and the fixed point 4.
+        let mut order = vec![3, 2, 1, 5, 4, 0];
+        permute(&mut v, &mut order);
+        assert_eq!(v, ['d', 'c', 'b', 'f', 'e', 'a']);
+        assert_eq!(order, [0, 1, 2, 3, 4, 5]);
     }
 }

@@ -107,6 +107,8 @@ fn check_forbidden(plan: &Plan, name: &str) {
 #[test]
 fn blocks_partition_the_inner_field_and_keep_forbidden_directions_on_every_field() {
     for field in valid_fields() {
+        // Each method's plan alone, for auto's candidates to be compared with.
+        let mut alone: Vec<(Decomposition, furrow::metrics::Summary)> = Vec::new();
         for d in [
             Decomposition::None,
             Decomposition::Boustrophedon,
@@ -168,7 +170,24 @@ fn blocks_partition_the_inner_field_and_keep_forbidden_directions_on_every_field
                     "{name}"
                 );
                 assert!(report.reason.contains(report.method.as_str()), "{name}");
+                // Each candidate is the plan its method gives alone: auto takes nothing from
+                // another candidate that would change it (boustrophedon takes the route and
+                // path of `none` where its blocks are those of `none`, numbered otherwise).
+                for c in &report.candidates {
+                    let Some((_, own)) = alone.iter().find(|(m, _)| *m == c.method) else {
+                        panic!("{name}: no plan of {} alone", c.method.as_str());
+                    };
+                    let what = format!("{name}: candidate {}", c.method.as_str());
+                    assert_eq!(c.estimated_time_s, own.estimated_time_s, "{what}");
+                    assert_eq!(c.swath_count, own.swath_count, "{what}");
+                    assert_eq!(c.turn_count, own.turn_count, "{what}");
+                    assert_eq!(
+                        c.block_count, own.decomposition.candidates[0].block_count,
+                        "{what}"
+                    );
+                }
             }
+            alone.push((d, plan.summary.clone()));
         }
     }
 }

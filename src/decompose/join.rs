@@ -17,6 +17,7 @@ use crate::error::PlanError;
 use crate::objective::{measure, measure_turns, turn_length, Objective, OperationTime, SwathStats};
 use crate::prohibited::constraints_in;
 use crate::route::pattern::block_turning_m;
+use crate::sort::SharedSort;
 use crate::swath::{generate_with, LinePlacement, Swath, SwathSettings};
 use geo::{Area, BooleanOps, MultiPolygon, Simplify};
 
@@ -97,12 +98,13 @@ pub fn rough(area: &MultiPolygon, s: &SplitMergeSettings) -> MultiPolygon {
     area.simplify((s.width / 10.0).max(0.01))
 }
 
-/// A join considered: the blocks (slots), the time it saves, and the joined block.
+/// A join considered: the blocks (slots), the time it saves, the joined block's direction and
+/// time.
 struct Join {
     a: usize,
     b: usize,
     saving: f64,
-    joined: BlockArea,
+    bearing: f64,
     time: f64,
 }
 
@@ -161,7 +163,7 @@ pub fn join_blocks_marked(
     // joined block borders what either did).
     let all_borders = borders(&blocks_of(&slots), s.width);
     let mut pairs: Vec<(usize, usize)> = all_borders.iter().map(|b| (b.first, b.second)).collect();
-    pairs.sort_unstable();
+    pairs.shared_sort_unstable_by(Ord::cmp);
     pairs.dedup();
     // A block with no swath of its own (a strip narrower than a swath beside an edge that
     // runs along the direction) is not worth a visit, but the crop in it is: it joins the
@@ -253,10 +255,7 @@ pub fn join_blocks_marked(
                             a,
                             b,
                             saving,
-                            joined: BlockArea {
-                                area: side_by_side(&[&x.area, &y.area]),
-                                bearing,
-                            },
+                            bearing,
                             time,
                         });
                     }
@@ -309,12 +308,15 @@ pub fn join_blocks_marked(
         let Some(join) = cache.swap_remove(k).1 else {
             break;
         };
-        let area = outline_of(&join.joined.area, min_area);
+        let (Some(x), Some(y)) = (&slots[join.a], &slots[join.b]) else {
+            break;
+        };
+        let area = outline_of(&side_by_side(&[&x.area, &y.area]), min_area);
         roughs[join.a] = rough(&area, s);
         changed[join.a] = true;
         slots[join.a] = Some(BlockArea {
             area,
-            bearing: join.joined.bearing,
+            bearing: join.bearing,
         });
         slots[join.b] = None;
         times[join.a] = join.time;
@@ -372,7 +374,7 @@ fn rename(pairs: &mut Vec<(usize, usize)>, from: usize, to: usize) {
         *p = (a.min(b), a.max(b));
     }
     pairs.retain(|p| p.0 != p.1);
-    pairs.sort_unstable();
+    pairs.shared_sort_unstable_by(Ord::cmp);
     pairs.dedup();
 }
 
@@ -432,7 +434,7 @@ fn best_triple(
                 let saving = times[a] + times[m] + times[b] - time;
                 if saving > 1e-6 && best.as_ref().is_none_or(|t| saving > t.0) {
                     let mut three = [a, m, b];
-                    three.sort_unstable();
+                    three.shared_sort_unstable_by(Ord::cmp);
                     best = Some((
                         saving,
                         three[0],

@@ -119,6 +119,30 @@ impl Route {
     pub fn all_connections(&self) -> impl Iterator<Item = &Connection> {
         self.connections.iter().flatten().chain(&self.finish)
     }
+
+    /// The same route over the same swaths numbered otherwise: each swath step's index `i`
+    /// becomes `new_index[i]`. `None` if a step's swath has no new index.
+    ///
+    /// ```
+    /// use furrow::route::{Route, RouteStep};
+    ///
+    /// let route = Route {
+    ///     steps: vec![RouteStep::Swath { swath: 1, reversed: false, block: 0 }],
+    ///     ..Route::default()
+    /// };
+    /// let renumbered = route.with_swaths_renumbered(&[Some(1), Some(0)]).unwrap();
+    /// assert_eq!(renumbered.steps, [RouteStep::Swath { swath: 0, reversed: false, block: 0 }]);
+    /// assert!(route.with_swaths_renumbered(&[Some(0)]).is_none());
+    /// ```
+    pub fn with_swaths_renumbered(&self, new_index: &[Option<usize>]) -> Option<Route> {
+        let mut route = self.clone();
+        for step in &mut route.steps {
+            if let RouteStep::Swath { swath, .. } = step {
+                *swath = new_index.get(*swath).copied().flatten()?;
+            }
+        }
+        Some(route)
+    }
 }
 
 /// The settings of the route stage.
