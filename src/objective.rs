@@ -17,7 +17,7 @@
 
 use crate::decompose::block_members;
 use crate::geometry::PlanarHypot;
-use crate::sort::SharedSort;
+use crate::sort::{sort_floats, SharedSort};
 use crate::swath::{Swath, Swaths};
 use geo::{Area, Coord, MultiPolygon};
 use serde::{Deserialize, Serialize};
@@ -428,7 +428,7 @@ fn covered_area(swaths: &[Swath], width: f64, area: &MultiPolygon) -> f64 {
         .flat_map(|p| std::iter::once(p.exterior()).chain(p.interiors()))
         .flat_map(|ring| ring.0.iter().map(|&v| frame.project(v).0))
         .collect();
-    vertices.shared_sort_by(f64::total_cmp);
+    sort_floats(&mut vertices);
     // (sample offset, line, weight) at the middle of every interval between breaks.
     let mut samples: Vec<(f64, usize, f64)> = Vec::with_capacity(lines.len() * 4 + vertices.len());
     let mut breaks: Vec<f64> = Vec::new();
@@ -447,14 +447,14 @@ fn covered_area(swaths: &[Swath], width: f64, area: &MultiPolygon) -> f64 {
                 );
             }
         }
-        breaks.shared_sort_by(f64::total_cmp);
+        sort_floats(&mut breaks);
         for pair in breaks.windows(2) {
             if pair[1] - pair[0] > 1e-9 {
                 samples.push(((pair[0] + pair[1]) / 2.0, i, pair[1] - pair[0]));
             }
         }
     }
-    samples.shared_sort_by(|a, b| a.0.total_cmp(&b.0));
+    samples.shared_sort_by_float_key(|s| s.0);
     let offsets: Vec<f64> = samples.iter().map(|s| s.0).collect();
     let mut covered = 0.0;
     frame.clip_each(area, &offsets, |k, chord| {

@@ -31,6 +31,9 @@ pub trait SharedSort<T> {
     fn shared_sort_by_key<K: Ord>(&mut self, key: impl FnMut(&T) -> K);
     /// As [`slice::sort_unstable_by`].
     fn shared_sort_unstable_by(&mut self, compare: impl FnMut(&T, &T) -> Ordering);
+    /// As `sort_by(|a, b| key(a).total_cmp(&key(b)))` (stable), with the keys computed once
+    /// and sorted directly: for the long sorts of a sweep.
+    fn shared_sort_by_float_key(&mut self, key: impl FnMut(&T) -> f64);
 }
 
 impl<T> SharedSort<T> for [T] {
@@ -45,6 +48,36 @@ impl<T> SharedSort<T> for [T] {
     fn shared_sort_unstable_by(&mut self, mut compare: impl FnMut(&T, &T) -> Ordering) {
         unstable(self, &mut compare);
     }
+
+    fn shared_sort_by_float_key(&mut self, mut key: impl FnMut(&T) -> f64) {
+        if self.len() <= INSERTION_MAX {
+            insertion_sort(self, &mut |a, b| key(a).total_cmp(&key(b)));
+            return;
+        }
+        let mut keyed: Vec<(f64, usize)> = self.iter().map(&mut key).zip(0..).collect();
+        sort_keyed(&mut keyed);
+        let mut order: Vec<usize> = keyed.into_iter().map(|(_, i)| i).collect();
+        permute(self, &mut order);
+    }
+}
+
+/// Sorts numbers ascending by [`f64::total_cmp`], by one sort for every slice of `f64` (and
+/// without the indirect calls of [`SharedSort`]). Numbers equal by `total_cmp` have the same
+/// bits: the order is that of a stable sort.
+///
+/// ```
+/// let mut v = [2.5, -0.0, 0.0, -3.0];
+/// furrow::sort::sort_floats(&mut v);
+/// assert_eq!(v.map(f64::to_bits), [-3.0, -0.0, 0.0, 2.5].map(f64::to_bits));
+/// ```
+pub fn sort_floats(v: &mut [f64]) {
+    v.sort_unstable_by(f64::total_cmp);
+}
+
+/// Keys with their positions, by key and then position: the order of a stable sort by key.
+#[inline(never)]
+fn sort_keyed(keyed: &mut [(f64, usize)]) {
+    keyed.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
 }
 
 /// Up to this many elements a slice is sorted in place by insertion (a few hundred bytes of
@@ -151,6 +184,26 @@ mod tests {
             expected.sort_unstable_by(|a, b| b.cmp(a));
             assert_eq!(descending, expected, "{n} elements, unstable (no ties)");
         }
+    }
+
+    #[test]
+    fn float_keys_sort_as_a_stable_sort_by_total_cmp() {
+        for n in [3, INSERTION_MAX, INSERTION_MAX + 1, 100] {
+            let items: Vec<(f64, usize)> =
+                (0..n).map(|i| (((i * 37) % 7) as f64 - 3.0, i)).collect();
+            let mut ours = items.clone();
+            ours.shared_sort_by_float_key(|x| x.0);
+            let mut expected = items;
+            expected.sort_by(|a, b| a.0.total_cmp(&b.0));
+            assert_eq!(ours, expected, "{n} elements");
+        }
+        let mut floats: Vec<f64> = (0..50)
+            .map(|i| ((i * 13) % 11) as f64 * 0.5 - 2.0)
+            .collect();
+        let mut expected = floats.clone();
+        expected.sort_by(f64::total_cmp);
+        sort_floats(&mut floats);
+        assert_eq!(floats, expected);
     }
 
     #[test]

@@ -10,7 +10,7 @@
 
 use crate::geometry::PlanarHypot;
 use crate::geometry::SweepFrame;
-use crate::sort::SharedSort;
+use crate::sort::{sort_floats, SharedSort};
 use geo::{Coord, LineString, MultiPolygon, Polygon, SimplifyIdx};
 
 /// Across coordinates closer than this (metres) are one slab line.
@@ -202,7 +202,7 @@ pub fn split_prepared(area: &PreparedArea, frame: &SweepFrame) -> Vec<Trapezoid>
         }
         rings.push(pts);
     }
-    lines.shared_sort_unstable_by(f64::total_cmp);
+    sort_floats(&mut lines);
     lines.dedup_by(|a, b| (*a - *b).abs() <= SAME_LINE_M);
     if lines.len() < 2 {
         return Vec::new();
@@ -272,7 +272,7 @@ pub fn split_prepared(area: &PreparedArea, frame: &SweepFrame) -> Vec<Trapezoid>
     for (slab, mut in_slab) in chains.into_iter().enumerate() {
         let (x0, x1) = (lines[slab], lines[slab + 1]);
         let mid = (x0 + x1) / 2.0;
-        in_slab.shared_sort_unstable_by(|a, b| chain_at(a, mid).total_cmp(&chain_at(b, mid)));
+        in_slab.shared_sort_by_float_key(|c| chain_at(c, mid));
         // Even-odd: the chains pair up into the pieces inside.
         let mut it = in_slab.into_iter();
         while let (Some(lo), Some(hi)) = (it.next(), it.next()) {

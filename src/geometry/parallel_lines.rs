@@ -9,7 +9,7 @@
 //! of the direction search, which clips the field at many bearings.
 
 use super::bearing::unit_vector;
-use crate::sort::SharedSort;
+use crate::sort::{sort_floats, SharedSort};
 use geo::{Coord, MultiPolygon};
 
 /// A frame rotated to a bearing: `along` points in the driving direction, `across` to its right.
@@ -148,7 +148,7 @@ impl SweepFrame {
                 }
             }
         }
-        edges.shared_sort_unstable_by(|e, f| e.low.total_cmp(&f.low));
+        edges.shared_sort_by_float_key(|e| e.low);
 
         let mut active: Vec<SweepEdge> = Vec::new();
         let mut next = 0;
@@ -169,7 +169,7 @@ impl SweepFrame {
                     crossings.push(e.a0 + t * (e.a1 - e.a0));
                 }
             }
-            crossings.shared_sort_unstable_by(f64::total_cmp);
+            sort_floats(&mut crossings);
             pieces.clear();
             pieces.extend(
                 crossings
