@@ -85,22 +85,26 @@ fn sort_keyed(keyed: &mut [(f64, usize)]) {
 const INSERTION_MAX: usize = 20;
 
 fn stable<T>(v: &mut [T], compare: &mut dyn FnMut(&T, &T) -> Ordering) {
-    if v.len() <= INSERTION_MAX {
-        insertion_sort(v, compare);
-        return;
-    }
-    let mut order: Vec<usize> = (0..v.len()).collect();
-    sort_positions(&mut order, &mut |i, j| compare(&v[i], &v[j]));
-    permute(v, &mut order);
+    through_positions(v, compare, sort_positions);
 }
 
 fn unstable<T>(v: &mut [T], compare: &mut dyn FnMut(&T, &T) -> Ordering) {
+    through_positions(v, compare, sort_positions_unstable);
+}
+
+/// Sorts `v` by insertion when short, else its positions by `sort`, then puts the elements in
+/// that order.
+fn through_positions<T>(
+    v: &mut [T],
+    compare: &mut dyn FnMut(&T, &T) -> Ordering,
+    sort: fn(&mut [usize], &mut dyn FnMut(usize, usize) -> Ordering),
+) {
     if v.len() <= INSERTION_MAX {
         insertion_sort(v, compare);
         return;
     }
     let mut order: Vec<usize> = (0..v.len()).collect();
-    sort_positions_unstable(&mut order, &mut |i, j| compare(&v[i], &v[j]));
+    sort(&mut order, &mut |i, j| compare(&v[i], &v[j]));
     permute(v, &mut order);
 }
 
