@@ -16,7 +16,7 @@
 //! midpoint rule between those breaks is exact.
 
 use crate::decompose::block_members;
-use crate::geometry::PlanarHypot;
+use crate::geometry::{Extremes, PlanarHypot};
 use crate::sort::{sort_floats, SharedSort};
 use crate::swath::{Swath, Swaths};
 use geo::{Area, Coord, MultiPolygon};
@@ -478,8 +478,8 @@ fn covered_area(swaths: &[Swath], width: f64, area: &MultiPolygon) -> f64 {
 fn for_each_overlap(a: &[(f64, f64)], b: &[(f64, f64)], mut f: impl FnMut(f64, f64)) {
     let (mut i, mut j) = (0, 0);
     while i < a.len() && j < b.len() {
-        let lo = a[i].0.max(b[j].0);
-        let hi = a[i].1.min(b[j].1);
+        let lo = a[i].0.greater(b[j].0);
+        let hi = a[i].1.lesser(b[j].1);
         if hi > lo {
             f(lo, hi);
         }

@@ -9,7 +9,7 @@
 //! or cross an obstacle; pieces shorter than a minimum length are left to the headland passes.
 
 use crate::error::{ErrorCode, PlanError};
-use crate::geometry::SweepFrame;
+use crate::geometry::{Extremes, SweepFrame};
 use crate::sort::SharedSort;
 use geo::{Coord, Line, MultiPolygon};
 
@@ -157,8 +157,8 @@ pub fn lifts(swaths: &Swaths, obstacles: &[(usize, &geo::Polygon)]) -> Vec<Lift>
             let mut a = (f64::INFINITY, f64::NEG_INFINITY);
             for &p in &polygon.exterior().0 {
                 let (x, y) = frame.project(p);
-                c = (c.0.min(x), c.1.max(x));
-                a = (a.0.min(y), a.1.max(y));
+                c = (c.0.lesser(x), c.1.greater(x));
+                a = (a.0.lesser(y), a.1.greater(y));
             }
             (c, a)
         };
@@ -172,8 +172,8 @@ pub fn lifts(swaths: &Swaths, obstacles: &[(usize, &geo::Polygon)]) -> Vec<Lift>
             if s.across + half <= c.0 || s.across - half >= c.1 {
                 continue;
             }
-            let from = a.0.max(s.along.0);
-            let to = a.1.min(s.along.1);
+            let from = a.0.greater(s.along.0);
+            let to = a.1.lesser(s.along.1);
             if from < to {
                 out.push(Lift {
                     swath: s.index,

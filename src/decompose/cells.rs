@@ -8,10 +8,11 @@
 //! (its ends, where the swaths end). Work is done in the [`SweepFrame`] of the direction, where
 //! the slab lines are `across = const`.
 
+use crate::geometry::simplify::planar_simplify_idx;
 use crate::geometry::PlanarHypot;
 use crate::geometry::SweepFrame;
 use crate::sort::{sort_floats, SharedSort};
-use geo::{Coord, LineString, MultiPolygon, Polygon, SimplifyIdx};
+use geo::{Coord, LineString, MultiPolygon, Polygon};
 
 /// Across coordinates closer than this (metres) are one slab line.
 const SAME_LINE_M: f64 = 1e-6;
@@ -149,7 +150,7 @@ impl PreparedArea {
                 }
                 let mut kept = vec![tolerance <= 0.0; n];
                 if tolerance > 0.0 {
-                    for i in ring.simplify_idx(tolerance) {
+                    for i in planar_simplify_idx(ring, tolerance) {
                         if let Some(m) = kept.get_mut(i % n) {
                             *m = true;
                         }

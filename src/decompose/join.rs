@@ -14,12 +14,13 @@ use super::split_merge::SplitMergeSettings;
 use super::BlockArea;
 use crate::decompose::block_members;
 use crate::error::PlanError;
+use crate::geometry::PlanarSimplify;
 use crate::objective::{measure, measure_turns, turn_length, Objective, OperationTime, SwathStats};
 use crate::prohibited::constraints_in;
 use crate::route::pattern::block_turning_m;
 use crate::sort::SharedSort;
 use crate::swath::{generate_with, LinePlacement, Swath, SwathSettings};
-use geo::{Area, BooleanOps, MultiPolygon, Simplify};
+use geo::{Area, BooleanOps, MultiPolygon};
 
 /// Estimated time (seconds) to work `area` as one block at swath direction `bearing`: swaths,
 /// turns and the uncovered area (estimated: the area less the strips') by [`OperationTime`],
@@ -95,7 +96,7 @@ fn entry_time(stats: &SwathStats, s: &SplitMergeSettings) -> f64 {
 /// (only vertices in line are dropped there); curved edges, such as the rounded corners of
 /// headlands, lose most of their vertices, which the swath sweep would sort at every estimate.
 pub fn rough(area: &MultiPolygon, s: &SplitMergeSettings) -> MultiPolygon {
-    area.simplify((s.width / 10.0).max(0.01))
+    area.planar_simplify((s.width / 10.0).max(0.01))
 }
 
 /// A join considered: the blocks (slots), the time it saves, the joined block's direction and

@@ -46,3 +46,41 @@ impl PlanarHypot for f64 {
         (self * self + y * y).sqrt()
     }
 }
+
+/// The smaller and the larger of two numbers by one comparison: `f64::min` and `f64::max`
+/// without their rule for NaN, which in WebAssembly makes each a call (to `fmin`, `fmax`). For
+/// coordinates and lengths, never NaN in the planner, the result is the same (but for the sign
+/// of a zero, where both are zeros).
+///
+/// ```
+/// use furrow::geometry::Extremes;
+///
+/// assert_eq!(2.5f64.lesser(-1.0), -1.0);
+/// assert_eq!(2.5f64.greater(-1.0), 2.5);
+/// ```
+pub trait Extremes {
+    /// The smaller of `self` and `other`.
+    fn lesser(self, other: f64) -> f64;
+    /// The larger of `self` and `other`.
+    fn greater(self, other: f64) -> f64;
+}
+
+impl Extremes for f64 {
+    #[inline]
+    fn lesser(self, other: f64) -> f64 {
+        if self < other {
+            self
+        } else {
+            other
+        }
+    }
+
+    #[inline]
+    fn greater(self, other: f64) -> f64 {
+        if self > other {
+            self
+        } else {
+            other
+        }
+    }
+}

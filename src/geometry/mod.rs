@@ -5,8 +5,10 @@ pub mod bearing;
 pub mod bearing_range;
 pub mod distance;
 pub mod parallel_lines;
+pub mod simplify;
 
 pub use bearing::{bearing_of, deg_to_bearing, swath_direction, unit_vector};
 pub use bearing_range::{forbids_every_direction, BearingRange};
-pub use distance::{point_segment_distance, PlanarHypot};
+pub use distance::{point_segment_distance, Extremes, PlanarHypot};
 pub use parallel_lines::SweepFrame;
+pub use simplify::PlanarSimplify;

@@ -34,6 +34,7 @@ use super::continuous::{cc_dubins_all, cc_turn, cc_u_turn, CcSettings};
 use super::curve::{self, Gear, Pose, Segment};
 use super::dubins::dubins_all;
 use super::reeds_shepp::reeds_shepp_all;
+use crate::geometry::Extremes;
 use crate::sort::SharedSort;
 use geo::{Coord, Line, LineString, Polygon};
 use rstar::{RTree, RTreeObject, AABB};
@@ -438,8 +439,8 @@ impl Area {
         let mut high = [f64::NEG_INFINITY; 2];
         for s in segments {
             let (x, y, reach) = (s.start.x, s.start.y, s.length.abs());
-            low = [low[0].min(x - reach), low[1].min(y - reach)];
-            high = [high[0].max(x + reach), high[1].max(y + reach)];
+            low = [low[0].lesser(x - reach), low[1].lesser(y - reach)];
+            high = [high[0].greater(x + reach), high[1].greater(y + reach)];
         }
         if !(low[0] <= high[0] && low[1] <= high[1]) {
             return true;
@@ -469,14 +470,14 @@ impl Area {
 
 /// Whether the chord from `a` to `b` crosses one of `edges`.
 fn crosses_any(edges: &[&Line], a: Coord, b: Coord) -> bool {
-    let (x0, x1) = (a.x.min(b.x), a.x.max(b.x));
-    let (y0, y1) = (a.y.min(b.y), a.y.max(b.y));
+    let (x0, x1) = (a.x.lesser(b.x), a.x.greater(b.x));
+    let (y0, y1) = (a.y.lesser(b.y), a.y.greater(b.y));
     let chord = Line::new(a, b);
     edges.iter().any(|e| {
-        e.start.x.max(e.end.x) >= x0
-            && e.start.x.min(e.end.x) <= x1
-            && e.start.y.max(e.end.y) >= y0
-            && e.start.y.min(e.end.y) <= y1
+        e.start.x.greater(e.end.x) >= x0
+            && e.start.x.lesser(e.end.x) <= x1
+            && e.start.y.greater(e.end.y) >= y0
+            && e.start.y.lesser(e.end.y) <= y1
             && segments_intersect(&chord, e)
     })
 }
@@ -519,10 +520,10 @@ fn segments_intersect(a: &Line, b: &Line) -> bool {
     // Touching counts as leaving only where a point lies on the other segment.
     let on = |p: Coord, q: Coord, r: Coord, dd: f64| {
         dd == 0.0
-            && r.x >= p.x.min(q.x)
-            && r.x <= p.x.max(q.x)
-            && r.y >= p.y.min(q.y)
-            && r.y <= p.y.max(q.y)
+            && r.x >= p.x.lesser(q.x)
+            && r.x <= p.x.greater(q.x)
+            && r.y >= p.y.lesser(q.y)
+            && r.y <= p.y.greater(q.y)
     };
     on(b.start, b.end, a.start, d1)
         || on(b.start, b.end, a.end, d2)
