@@ -1,5 +1,7 @@
-//! Small geometric helpers shared by the pipeline stages: compass bearings, point-to-segment distance, and sets of parallel
-//! lines clipped by polygons (the core of swath generation).
+//! Small geometric helpers shared by the pipeline stages: compass bearings, point-to-segment
+//! distance, the planar `hypot`, `min` and `max` of the hot loops, Douglas-Peucker
+//! simplification, and sets of parallel lines clipped by polygons (the core of swath
+//! generation).
 
 pub mod bearing;
 pub mod bearing_range;
