@@ -130,8 +130,11 @@ impl Route {
     ///     steps: vec![RouteStep::Swath { swath: 1, reversed: false, block: 0 }],
     ///     ..Route::default()
     /// };
-    /// let renumbered = route.with_swaths_renumbered(&[Some(1), Some(0)]).unwrap();
-    /// assert_eq!(renumbered.steps, [RouteStep::Swath { swath: 0, reversed: false, block: 0 }]);
+    /// let renumbered = route.with_swaths_renumbered(&[Some(1), Some(0)]);
+    /// assert_eq!(
+    ///     renumbered.map(|r| r.steps),
+    ///     Some(vec![RouteStep::Swath { swath: 0, reversed: false, block: 0 }])
+    /// );
     /// assert!(route.with_swaths_renumbered(&[Some(0)]).is_none());
     /// ```
     pub fn with_swaths_renumbered(&self, new_index: &[Option<usize>]) -> Option<Route> {
