@@ -14,11 +14,10 @@
 use super::BlockArea;
 use crate::field::ProhibitedRegion;
 use crate::geometry::PlanarHypot;
-use crate::geometry::{bearing_of, swath_direction, BearingRange};
+use crate::geometry::{bearing_of, clip_segment, swath_direction, BearingRange};
 use crate::headland::{HeadlandPass, PassAround};
 use geo::{
-    Area, BooleanOps, BoundingRect, Coord, Euclidean, Intersects, Length, LineString,
-    MultiLineString, MultiPolygon, Polygon,
+    Area, BooleanOps, BoundingRect, Coord, Intersects, LineString, MultiPolygon, Polygon,
 };
 use std::f64::consts::PI;
 
@@ -249,15 +248,11 @@ pub fn cut_block_headlands(
             let shift = (k as f64 - 0.5) * width;
             for sign in [1.0, -1.0] {
                 let o = normal * (sign * shift);
-                let line = MultiLineString::new(vec![LineString::new(vec![
-                    border.from + o,
-                    border.to + o,
-                ])]);
-                for piece in band.clip(&line, false) {
-                    if piece.0.len() >= 2 && Euclidean.length(&piece) > width {
+                for (p, q) in clip_segment(&band, border.from + o, border.to + o) {
+                    if (q - p).x.planar_hypot((q - p).y) > width {
                         out.passes.push(HeadlandPass {
                             index: k as usize,
-                            line: piece,
+                            line: LineString::new(vec![p, q]),
                             closed: false,
                             around: PassAround::Block,
                         });

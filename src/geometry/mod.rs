@@ -12,5 +12,5 @@ pub mod simplify;
 pub use bearing::{bearing_of, deg_to_bearing, swath_direction, unit_vector};
 pub use bearing_range::{forbids_every_direction, BearingRange};
 pub use distance::{point_segment_distance, Extremes, PlanarHypot};
-pub use parallel_lines::SweepFrame;
+pub use parallel_lines::{clip_segment, SweepFrame};
 pub use simplify::PlanarSimplify;

@@ -8,7 +8,8 @@
 //! pieces inside (even-odd rule, so holes cut lines without special cases). This is the hot path
 //! of the direction search, which clips the field at many bearings.
 
-use super::bearing::unit_vector;
+use super::bearing::{bearing_of, unit_vector};
+use super::distance::Extremes;
 use crate::sort::{sort_floats, SharedSort};
 use geo::{Coord, MultiPolygon};
 
@@ -182,6 +183,45 @@ impl SweepFrame {
     }
 }
 
+/// The pieces of the segment from `from` to `to` inside the polygons (holes cut it), in order
+/// from `from`: one line of [`SweepFrame::clip`], limited to the segment. A piece that reaches
+/// an end of the segment ends at that very point.
+///
+/// ```
+/// use furrow::geometry::clip_segment;
+/// use geo::{coord, polygon, MultiPolygon};
+///
+/// // A 10 x 10 square with a 2 x 2 hole, crossed by a segment from x = -5 to x = 8 at y = 5.
+/// let square = polygon!(
+///     exterior: [(x: 0., y: 0.), (x: 10., y: 0.), (x: 10., y: 10.), (x: 0., y: 10.)],
+///     interiors: [[(x: 4., y: 4.), (x: 6., y: 4.), (x: 6., y: 6.), (x: 4., y: 6.)]],
+/// );
+/// let pieces = clip_segment(&MultiPolygon::new(vec![square]), coord! { x: -5., y: 5. }, coord! { x: 8., y: 5. });
+/// assert_eq!(pieces.len(), 2);
+/// assert!((pieces[0].0.x - 0.0).abs() < 1e-12 && (pieces[0].1.x - 4.0).abs() < 1e-12);
+/// assert!((pieces[1].0.x - 6.0).abs() < 1e-12 && pieces[1].1 == coord! { x: 8., y: 5. });
+/// ```
+pub fn clip_segment(polygons: &MultiPolygon, from: Coord, to: Coord) -> Vec<(Coord, Coord)> {
+    let frame = SweepFrame::new(bearing_of(from, to));
+    let (c, start) = frame.project(from);
+    let (_, end) = frame.project(to);
+    let mut out = Vec::new();
+    if end <= start {
+        return out;
+    }
+    frame.clip_each(polygons, &[c], |_, pieces| {
+        for &(a0, a1) in pieces {
+            let (a0, a1) = (a0.greater(start), a1.lesser(end));
+            if a1 > a0 {
+                let p = if a0 == start { from } else { frame.point(c, a0) };
+                let q = if a1 == end { to } else { frame.point(c, a1) };
+                out.push((p, q));
+            }
+        }
+    });
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -245,6 +285,48 @@ mod tests {
             for (a0, a1) in pieces {
                 let mid = f.point(c, (a0 + a1) / 2.0);
                 prop_assert!(poly.intersects(&Line::new(mid, mid)));
+            }
+        }
+
+        /// A segment's pieces are those geo's BooleanOps clips: the same number, the same
+        /// ends (to geo's snapping grid), inside the polygon, in order from its start.
+        #[test]
+        fn a_segment_is_clipped_as_by_boolean_ops(
+            from in (0.0..50.0f64, 0.0..50.0f64),
+            to in (0.0..50.0f64, 0.0..50.0f64),
+            pts in proptest::collection::vec(0.0..50.0f64, 3..9),
+            hole in proptest::bool::ANY,
+        ) {
+            let star = |scale: f64| -> geo::LineString {
+                let mut ring: Vec<(f64, f64)> = pts.iter().enumerate().map(|(i, r)| {
+                    let t = i as f64 / pts.len() as f64 * std::f64::consts::TAU;
+                    (25.0 + scale * (r + 1.0) * t.cos() / 2.0, 25.0 + scale * (r + 1.0) * t.sin() / 2.0)
+                }).collect();
+                ring.push(ring[0]);
+                ring.into()
+            };
+            let interiors = if hole { vec![star(0.1)] } else { vec![] };
+            let poly = geo::Polygon::new(star(1.0), interiors);
+            prop_assume!(poly.unsigned_area() > 1.0);
+            let (a, b) = (Coord { x: from.0, y: from.1 }, Coord { x: to.0, y: to.1 });
+            prop_assume!((b - a).x.hypot((b - a).y) > 1.0);
+            let area = MultiPolygon::new(vec![poly.clone()]);
+            let ours = clip_segment(&area, a, b);
+            let theirs = poly.clip(&geo::MultiLineString::new(vec![geo::LineString::from(vec![a, b])]), false);
+            use geo::{Euclidean, Length};
+            // geo leaves out pieces shorter than its grid, and splits none at a vertex.
+            let theirs: Vec<_> = theirs.0.iter().filter(|l| Euclidean.length(*l) > 1e-3).collect();
+            let ours_kept: Vec<_> = ours.iter().filter(|(p, q)| (*q - *p).x.hypot((*q - *p).y) > 1e-3).collect();
+            prop_assert_eq!(ours_kept.len(), theirs.len());
+            let along = |p: Coord| (p - a).x * (b - a).x + (p - a).y * (b - a).y;
+            for w in ours.windows(2) {
+                prop_assert!(along(w[0].1) <= along(w[1].0));
+            }
+            for (p, q) in &ours_kept {
+                let mid = (*p + *q) / 2.0;
+                prop_assert!(poly.intersects(&Line::new(mid, mid)));
+                let near = |x: Coord| theirs.iter().any(|l| l.0.iter().any(|c| (*c - x).x.hypot((*c - x).y) < 1e-4));
+                prop_assert!(near(*p) && near(*q), "{:?} {:?} not in {:?}", p, q, theirs);
             }
         }
     }
