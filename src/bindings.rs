@@ -35,11 +35,19 @@ fn start() {
 pub fn plan_js(field: JsValue, options: JsValue) -> Result<JsValue, JsValue> {
     let started = Instant::now();
     let options = read_options(options).map_err(|e| to_js_error(&e))?;
-    let input = match field.as_string() {
-        Some(text) => geojson::parse_str(&text),
-        None => geojson::parse_from(serde_wasm_bindgen::Deserializer::from(field)),
-    }
-    .map_err(|e| to_js_error(&e))?;
+    // An object is read as its JSON text: one string across the boundary rather than a call
+    // per property, and one reader for both forms. NaN and Infinity become null there, which
+    // the reader takes for a coordinate that is not a finite number.
+    let text = match field.as_string() {
+        Some(text) => text,
+        None => json_text(&field).map_err(|_| {
+            to_js_error(&PlanError::new(
+                ErrorCode::InvalidGeojson,
+                "the field must be GeoJSON: its text, or an object of plain values",
+            ))
+        })?,
+    };
+    let input = geojson::parse_str(&text).map_err(|e| to_js_error(&e))?;
     let (field, warnings) =
         validate::field_from_input(input, options.coordinates).map_err(|e| to_js_error(&e))?;
     let read_ms = started.elapsed().as_secs_f64() * 1000.0;
@@ -273,8 +281,7 @@ fn read_options(options: JsValue) -> Result<PlanOptions, PlanError> {
     if options.is_undefined() || options.is_null() {
         return Ok(PlanOptions::default());
     }
-    // Through JSON text, so that unknown keys (typos) are refused exactly as on the command line;
-    // serde-wasm-bindgen only looks up the keys it knows.
+    // Through JSON text, so that unknown keys (typos) are refused exactly as on the command line.
     let text = js_sys::JSON::stringify(&options)
         .ok()
         .and_then(|s| s.as_string())

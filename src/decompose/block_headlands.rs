@@ -16,9 +16,7 @@ use crate::field::ProhibitedRegion;
 use crate::geometry::PlanarHypot;
 use crate::geometry::{bearing_of, clip_segment, swath_direction, BearingRange};
 use crate::headland::{HeadlandPass, PassAround};
-use geo::{
-    Area, BooleanOps, BoundingRect, Coord, Intersects, LineString, MultiPolygon, Polygon,
-};
+use geo::{Area, BooleanOps, BoundingRect, Coord, Intersects, LineString, MultiPolygon, Polygon};
 use std::f64::consts::PI;
 
 /// A block end within this many degrees of its swath direction needs no headland (Oksanen &

@@ -110,12 +110,17 @@ fn plain(message: &str) -> String {
 /// For JSON that is not the GeoJSON expected: the first feature that does not read on its own.
 /// Only called on the error path, so reading the text twice costs nothing in a good plan.
 fn failing_feature(text: &str) -> Option<usize> {
-    let value: serde_json::Value = serde_json::from_str(text).ok()?;
-    value
-        .get("features")?
-        .as_array()?
+    /// The features of a collection as their text, each read again on its own.
+    #[derive(Deserialize)]
+    struct Features<'a> {
+        #[serde(borrow)]
+        features: Vec<&'a serde_json::value::RawValue>,
+    }
+    let collection: Features = serde_json::from_str(text).ok()?;
+    collection
+        .features
         .iter()
-        .position(|f| RawObject::deserialize(f).is_err())
+        .position(|f| serde_json::from_str::<RawObject>(f.get()).is_err())
 }
 
 /// Whether the text at a 1-based line and column starts with NaN or Infinity.
@@ -126,21 +131,6 @@ fn non_number_at(text: &str, line: usize, column: usize) -> bool {
     let rest = l.get(column.saturating_sub(1)..).unwrap_or("");
     let rest = rest.trim_start_matches('-');
     rest.starts_with("NaN") || rest.starts_with("Infinity")
-}
-
-/// Reads a GeoJSON value from any serde deserializer (e.g. a JavaScript object through
-/// serde-wasm-bindgen).
-pub fn parse_from<'de, D: Deserializer<'de>>(d: D) -> Result<InputFeatures, PlanError>
-where
-    D::Error: fmt::Display,
-{
-    let raw = RawObject::deserialize(d).map_err(|e| {
-        PlanError::new(
-            ErrorCode::InvalidGeojson,
-            format!("the input is not valid GeoJSON: {e}"),
-        )
-    })?;
-    collect(raw)
 }
 
 /// A GeoJSON object of any type: FeatureCollection, Feature or geometry. Unknown members are
@@ -170,11 +160,35 @@ struct RawProperties {
 }
 
 /// A `name` may be a string or a number in the wild.
-#[derive(Debug, Deserialize)]
-#[serde(untagged)]
+#[derive(Debug)]
 enum NameValue {
     Text(String),
     Number(f64),
+}
+
+impl<'de> Deserialize<'de> for NameValue {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct NameVisitor;
+        impl Visitor<'_> for NameVisitor {
+            type Value = NameValue;
+            fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
+                f.write_str("a string or a number")
+            }
+            fn visit_str<E: de::Error>(self, v: &str) -> Result<NameValue, E> {
+                Ok(NameValue::Text(v.to_string()))
+            }
+            fn visit_f64<E: de::Error>(self, v: f64) -> Result<NameValue, E> {
+                Ok(NameValue::Number(v))
+            }
+            fn visit_i64<E: de::Error>(self, v: i64) -> Result<NameValue, E> {
+                Ok(NameValue::Number(v as f64))
+            }
+            fn visit_u64<E: de::Error>(self, v: u64) -> Result<NameValue, E> {
+                Ok(NameValue::Number(v as f64))
+            }
+        }
+        d.deserialize_any(NameVisitor)
+    }
 }
 
 /// GeoJSON coordinates of any depth.
@@ -200,6 +214,11 @@ impl<'de> Deserialize<'de> for Coords {
             }
             fn visit_u64<E: de::Error>(self, v: u64) -> Result<Coords, E> {
                 Ok(Coords::Number(v as f64))
+            }
+            // A number JSON cannot carry: JavaScript's JSON.stringify writes NaN and Infinity
+            // as null. Validation refuses it as a coordinate that is not a finite number.
+            fn visit_unit<E: de::Error>(self) -> Result<Coords, E> {
+                Ok(Coords::Number(f64::NAN))
             }
             fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<Coords, A::Error> {
                 let mut items = Vec::with_capacity(seq.size_hint().unwrap_or(0).min(4096));
@@ -583,6 +602,23 @@ mod tests {
         )
         .unwrap_err();
         assert_eq!((e.code, e.feature), (ErrorCode::InvalidGeojson, Some(1)));
+    }
+
+    #[test]
+    fn null_coordinates_are_numbers_that_are_not_finite() {
+        // JSON.stringify writes NaN and Infinity of a JavaScript object as null.
+        let input = parse_str(
+            r#"{"type":"Feature","properties":{"name":7},
+            "geometry":{"type":"Polygon","coordinates":[[[0,0],[null,0],[1,1],[0,0]]]}}"#,
+        )
+        .unwrap();
+        let ring = &input.polygons[0].rings[0];
+        assert!(ring[1][0].is_nan() && ring[1][1] == 0.0);
+        assert_eq!(input.polygons[0].name.as_deref(), Some("7"));
+        let e = crate::field::validate::field_from_input(input, crate::field::Coordinates::Metric)
+            .unwrap_err();
+        assert_eq!(e.code, ErrorCode::NonFiniteCoordinate);
+        assert_eq!((e.feature, e.ring, e.vertex), (Some(0), Some(0), Some(1)));
     }
 
     #[test]

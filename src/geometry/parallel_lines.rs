@@ -213,7 +213,11 @@ pub fn clip_segment(polygons: &MultiPolygon, from: Coord, to: Coord) -> Vec<(Coo
         for &(a0, a1) in pieces {
             let (a0, a1) = (a0.greater(start), a1.lesser(end));
             if a1 > a0 {
-                let p = if a0 == start { from } else { frame.point(c, a0) };
+                let p = if a0 == start {
+                    from
+                } else {
+                    frame.point(c, a0)
+                };
                 let q = if a1 == end { to } else { frame.point(c, a1) };
                 out.push((p, q));
             }
