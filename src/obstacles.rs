@@ -18,10 +18,10 @@
 //! from ([`crate::headland::build`]); A obstacles are not.
 
 use crate::field::Field;
-use crate::geometry::{point_segment_distance, SweepFrame};
+use crate::geometry::{point_segment_distance, polygons_within, SweepFrame};
 use crate::headland::offset::drop_slivers;
 use crate::sort::SharedSort;
-use geo::{BooleanOps, ConvexHull, Coord, Distance, Euclidean, MultiPolygon, Polygon};
+use geo::{BooleanOps, ConvexHull, Coord, MultiPolygon, Polygon};
 use serde::Serialize;
 
 /// The class of an obstacle.
@@ -143,7 +143,7 @@ pub fn classify(field: &Field, s: &ClassSettings) -> ObstacleClasses {
         let mut merged = false;
         'pairs: for a in 0..groups.len() {
             for b in a + 1..groups.len() {
-                if Euclidean.distance(&groups[a].1, &groups[b].1) < s.width {
+                if polygons_within(&groups[a].1, &groups[b].1, s.width) {
                     let (members_b, _) = groups.remove(b);
                     let members = &mut groups[a].0;
                     members.extend(members_b);

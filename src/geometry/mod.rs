@@ -1,16 +1,18 @@
 //! Small geometric helpers shared by the pipeline stages: compass bearings, point-to-segment
 //! distance, the planar `hypot`, `min` and `max` of the hot loops, Douglas-Peucker
-//! simplification, and sets of parallel lines clipped by polygons (the core of swath
-//! generation).
+//! simplification, whether two polygons come within a distance, and sets of parallel lines
+//! clipped by polygons (the core of swath generation; one such line limited to a segment).
 
 pub mod bearing;
 pub mod bearing_range;
 pub mod distance;
 pub mod parallel_lines;
+pub mod polygon_distance;
 pub mod simplify;
 
 pub use bearing::{bearing_of, deg_to_bearing, swath_direction, unit_vector};
 pub use bearing_range::{forbids_every_direction, BearingRange};
 pub use distance::{point_segment_distance, Extremes, PlanarHypot};
 pub use parallel_lines::{clip_segment, SweepFrame};
+pub use polygon_distance::polygons_within;
 pub use simplify::PlanarSimplify;
