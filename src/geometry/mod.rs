@@ -1,13 +1,15 @@
 //! Small geometric helpers shared by the pipeline stages: compass bearings, point-to-segment
 //! distance, the planar `hypot`, `min` and `max` of the hot loops, Douglas-Peucker
-//! simplification, whether two polygons come within a distance, and sets of parallel lines
-//! clipped by polygons (the core of swath generation; one such line limited to a segment).
+//! simplification, whether two polygons come within a distance, segments for R-trees, and sets
+//! of parallel lines clipped by polygons (the core of swath generation; one such line limited
+//! to a segment).
 
 pub mod bearing;
 pub mod bearing_range;
 pub mod distance;
 pub mod parallel_lines;
 pub mod polygon_distance;
+pub mod segment_tree;
 pub mod simplify;
 
 pub use bearing::{bearing_of, deg_to_bearing, swath_direction, unit_vector};
@@ -15,4 +17,5 @@ pub use bearing_range::{forbids_every_direction, BearingRange};
 pub use distance::{point_segment_distance, Extremes, PlanarHypot};
 pub use parallel_lines::{clip_segment, SweepFrame};
 pub use polygon_distance::polygons_within;
+pub use segment_tree::IndexedSegment;
 pub use simplify::PlanarSimplify;

@@ -34,10 +34,10 @@ use super::continuous::{cc_dubins_all, cc_turn, cc_u_turn, CcSettings};
 use super::curve::{self, Gear, Pose, Segment};
 use super::dubins::dubins_all;
 use super::reeds_shepp::reeds_shepp_all;
-use crate::geometry::Extremes;
+use crate::geometry::{Extremes, IndexedSegment};
 use crate::sort::SharedSort;
 use geo::{Coord, Line, LineString, Polygon};
-use rstar::{RTree, RTreeObject, AABB};
+use rstar::{RTree, AABB};
 use std::f64::consts::FRAC_PI_2;
 
 /// What a turn costs per change of gear, metres of driving: stopping, changing gear and
@@ -389,18 +389,8 @@ pub struct Area {
     edges: RTree<Edge>,
 }
 
-#[derive(Debug, Clone, Copy, PartialEq)]
-struct Edge(Line);
-
-impl RTreeObject for Edge {
-    type Envelope = AABB<[f64; 2]>;
-    fn envelope(&self) -> Self::Envelope {
-        AABB::from_corners(
-            [self.0.start.x, self.0.start.y],
-            [self.0.end.x, self.0.end.y],
-        )
-    }
-}
+/// An edge of the driving area's rings.
+type Edge = IndexedSegment;
 
 /// Chords of a sampled curve are at most this far off it, metres.
 const CHORD_TOLERANCE_M: f64 = 0.005;
@@ -412,7 +402,7 @@ impl Area {
         let mut add = |ring: &LineString| {
             for l in ring.lines() {
                 if l.start != l.end {
-                    edges.push(Edge(l));
+                    edges.push(Edge::new(l.start, l.end, 0, 0));
                 }
             }
         };
@@ -445,10 +435,10 @@ impl Area {
         if !(low[0] <= high[0] && low[1] <= high[1]) {
             return true;
         }
-        let near: Vec<&Line> = self
+        let near: Vec<Line> = self
             .edges
             .locate_in_envelope_intersecting(&AABB::from_corners(low, high))
-            .map(|e| &e.0)
+            .map(Edge::as_line)
             .collect();
         if near.is_empty() {
             return true;
@@ -469,7 +459,7 @@ impl Area {
 }
 
 /// Whether the chord from `a` to `b` crosses one of `edges`.
-fn crosses_any(edges: &[&Line], a: Coord, b: Coord) -> bool {
+fn crosses_any(edges: &[Line], a: Coord, b: Coord) -> bool {
     let (x0, x1) = (a.x.lesser(b.x), a.x.greater(b.x));
     let (y0, y1) = (a.y.lesser(b.y), a.y.greater(b.y));
     let chord = Line::new(a, b);

@@ -31,12 +31,11 @@
 //! assert!(c.line(0, 1).is_some());
 //! ```
 
-use crate::geometry::point_segment_distance;
-use crate::geometry::PlanarHypot;
+use crate::geometry::{IndexedSegment, PlanarHypot};
 use crate::headland::HeadlandPass;
 use crate::sort::SharedSort;
 use geo::{Coord, LineString};
-use rstar::{PointDistance, RTree, RTreeObject, AABB};
+use rstar::RTree;
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
 
@@ -55,41 +54,19 @@ const HOP_WIDTHS: f64 = 1.05;
 /// hop: up to √2 widths at a right-angled corner rounded to the same radius.
 const CORNER_HOP_WIDTHS: f64 = 1.5;
 
-/// One segment of a line, for the nearest-point search.
-#[derive(Debug, Clone, Copy)]
-struct Segment {
-    line: usize,
-    index: usize,
-    a: Coord,
-    b: Coord,
-}
+/// One segment of a line, for the nearest-point search (`line` the graph's line).
+type Segment = IndexedSegment;
 
-impl RTreeObject for Segment {
-    type Envelope = AABB<[f64; 2]>;
-    fn envelope(&self) -> Self::Envelope {
-        AABB::from_corners([self.a.x, self.a.y], [self.b.x, self.b.y])
-    }
-}
-
-impl PointDistance for Segment {
-    fn distance_2(&self, p: &[f64; 2]) -> f64 {
-        let d = point_segment_distance(Coord { x: p[0], y: p[1] }, self.a, self.b);
-        d * d
-    }
-}
-
-impl Segment {
-    /// The point of the segment nearest to `p`, and its distance from the segment's start.
-    fn foot(&self, p: Coord) -> (Coord, f64) {
-        let d = self.b - self.a;
-        let len2 = d.x * d.x + d.y * d.y;
-        let t = if len2 > 0.0 {
-            (((p - self.a).x * d.x + (p - self.a).y * d.y) / len2).clamp(0.0, 1.0)
-        } else {
-            0.0
-        };
-        (self.a + d * t, t * len2.sqrt())
-    }
+/// The point of the segment nearest to `p`, and its distance from the segment's start.
+fn foot(seg: &Segment, p: Coord) -> (Coord, f64) {
+    let d = seg.b - seg.a;
+    let len2 = d.x * d.x + d.y * d.y;
+    let t = if len2 > 0.0 {
+        (((p - seg.a).x * d.x + (p - seg.a).y * d.y) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    (seg.a + d * t, t * len2.sqrt())
 }
 
 /// A line of the graph: a pass's centre line with the distance along it at each point.
@@ -197,12 +174,7 @@ impl HeadlandGraph {
             for (index, w) in points.windows(2).enumerate() {
                 s += (w[1] - w[0]).x.planar_hypot((w[1] - w[0]).y);
                 at.push(s);
-                segments.push(Segment {
-                    line,
-                    index,
-                    a: w[0],
-                    b: w[1],
-                });
+                segments.push(Segment::new(w[0], w[1], line, index));
             }
             lines.push(GraphLine {
                 points: points.clone(),
@@ -226,7 +198,7 @@ impl HeadlandGraph {
     /// The nearest point of any line to `p` within `radius`: (line, distance along it, point).
     fn nearest(&self, p: Coord, radius: f64) -> Option<(usize, f64, Coord)> {
         let seg = self.tree.nearest_neighbor(&[p.x, p.y])?;
-        let (foot, along) = seg.foot(p);
+        let (foot, along) = foot(seg, p);
         let d = (foot - p).x.planar_hypot((foot - p).y);
         (d <= radius).then(|| {
             let at = self.lines[seg.line].at[seg.index] + along;
@@ -294,7 +266,7 @@ impl HeadlandGraph {
                 if seg.line == line {
                     continue;
                 }
-                let (foot, along) = seg.foot(point);
+                let (foot, along) = foot(seg, point);
                 let d = (foot - point).x.planar_hypot((foot - point).y);
                 if d > reach && !neighbours(line, seg.line) {
                     continue;

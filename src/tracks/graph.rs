@@ -36,10 +36,10 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
-use crate::geometry::PlanarHypot;
+use crate::geometry::{IndexedSegment, PlanarHypot};
 use crate::sort::SharedSort;
 use geo::Coord;
-use rstar::{PointDistance, RTree, RTreeObject, AABB};
+use rstar::{RTree, RTreeObject};
 
 /// How close (metres) a track's end must come to another track to join it, and how close two
 /// tracks must run to be one trace.
@@ -243,28 +243,8 @@ pub struct TrackGraph {
     segments: RTree<Piece>,
 }
 
-/// One segment of a track, for the spatial searches.
-#[derive(Debug, Clone, Copy)]
-struct Piece {
-    track: usize,
-    index: usize,
-    a: Coord,
-    b: Coord,
-}
-
-impl RTreeObject for Piece {
-    type Envelope = AABB<[f64; 2]>;
-    fn envelope(&self) -> Self::Envelope {
-        AABB::from_corners([self.a.x, self.a.y], [self.b.x, self.b.y])
-    }
-}
-
-impl PointDistance for Piece {
-    fn distance_2(&self, p: &[f64; 2]) -> f64 {
-        let (_, d) = foot(self.a, self.b, Coord { x: p[0], y: p[1] });
-        d * d
-    }
-}
+/// One segment of a track, for the spatial searches (`line` the track).
+type Piece = IndexedSegment;
 
 impl TrackGraph {
     /// The graph of these tracks: their junctions found as the module explains.
@@ -292,18 +272,18 @@ impl TrackGraph {
         for piece in crossed.iter() {
             let env = piece.envelope();
             for other in segments.locate_in_envelope_intersecting(&env) {
-                let both = tracks[other.track].kind != TrackKind::Turn
-                    && tracks[other.track].kind != TrackKind::Swath;
-                if other.track == piece.track || (both && other.track < piece.track) {
+                let both = tracks[other.line].kind != TrackKind::Turn
+                    && tracks[other.line].kind != TrackKind::Swath;
+                if other.line == piece.line || (both && other.line < piece.line) {
                     continue;
                 }
                 if let Some((s, u)) = crossing(piece, other) {
-                    let ta = &tracks[piece.track];
-                    let tb = &tracks[other.track];
+                    let ta = &tracks[piece.line];
+                    let tb = &tracks[other.line];
                     let sa = ta.at[piece.index] + s;
                     let sb = tb.at[other.index] + u;
-                    let a = builder.node(piece.track, sa);
-                    let b = builder.node(other.track, sb);
+                    let a = builder.node(piece.line, sa);
+                    let b = builder.node(other.line, sb);
                     builder.join(a, b);
                 }
             }
@@ -340,12 +320,12 @@ impl TrackGraph {
             if best.is_some_and(|b| d > b.2 + 1e-9) {
                 break;
             }
-            let track = &self.tracks[piece.track];
+            let track = &self.tracks[piece.line];
             if !accept(track) {
                 continue;
             }
             if best.is_none_or(|b| d < b.2) {
-                best = Some((piece.track, track.at[piece.index] + s, d));
+                best = Some((piece.line, track.at[piece.index] + s, d));
             }
         }
         best
@@ -368,12 +348,7 @@ fn index_of(tracks: &[Track], keep: impl Fn(&Track) -> bool) -> RTree<Piece> {
                 .points
                 .windows(2)
                 .enumerate()
-                .map(move |(index, w)| Piece {
-                    track: t,
-                    index,
-                    a: w[0],
-                    b: w[1],
-                })
+                .map(move |(index, w)| Piece::new(w[0], w[1], t, index))
         })
         .collect();
     RTree::bulk_load(pieces)
@@ -524,14 +499,14 @@ fn touching(
     let mut best: Vec<(usize, f64, f64)> = Vec::new();
     for piece in segments.locate_within_distance([p.x, p.y], JOIN_TOLERANCE_M * JOIN_TOLERANCE_M) {
         let (u, d) = foot(piece.a, piece.b, p);
-        let su = tracks[piece.track].at[piece.index] + u;
-        if piece.track == t && (su - s).abs() < 1.0 {
+        let su = tracks[piece.line].at[piece.index] + u;
+        if piece.line == t && (su - s).abs() < 1.0 {
             continue; // the track itself, here
         }
-        match best.iter_mut().find(|b| b.0 == piece.track) {
-            Some(b) if d < b.2 => *b = (piece.track, su, d),
+        match best.iter_mut().find(|b| b.0 == piece.line) {
+            Some(b) if d < b.2 => *b = (piece.line, su, d),
             Some(_) => {}
-            None => best.push((piece.track, su, d)),
+            None => best.push((piece.line, su, d)),
         }
     }
     best.into_iter().map(|(u, su, _)| (u, su)).collect()
@@ -594,7 +569,7 @@ fn alongside(tracks: &[Track], segments: &RTree<Piece>, t: usize, s: f64) -> Vec
     let h = track.heading_at(s, true, true);
     let mut out: Vec<(usize, f64)> = Vec::new();
     for piece in segments.locate_within_distance([p.x, p.y], JOIN_TOLERANCE_M * JOIN_TOLERANCE_M) {
-        if piece.track == t || out.iter().any(|o| o.0 == piece.track) {
+        if piece.line == t || out.iter().any(|o| o.0 == piece.line) {
             continue;
         }
         let d = piece.b - piece.a;
@@ -603,7 +578,7 @@ fn alongside(tracks: &[Track], segments: &RTree<Piece>, t: usize, s: f64) -> Vec
             continue;
         }
         let (u, _) = foot(piece.a, piece.b, p);
-        out.push((piece.track, tracks[piece.track].at[piece.index] + u));
+        out.push((piece.line, tracks[piece.line].at[piece.index] + u));
     }
     out
 }
