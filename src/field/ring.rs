@@ -5,8 +5,9 @@
 //! straight back). [`clean_ring`] removes those and says what it did; [`find_self_intersection`]
 //! finds where a ring crosses or touches itself.
 
-use crate::geometry::PlanarHypot;
-use geo::algorithm::sweep::{Cross, Intersections};
+use crate::geometry::{Extremes, PlanarHypot};
+use crate::sort::SharedSort;
+use geo::algorithm::line_intersection::line_intersection;
 use geo::{Coord, Line, LineIntersection};
 
 /// Vertices closer than this (metres) are the same vertex.
@@ -158,24 +159,14 @@ pub fn signed_area2(ring: &[Coord]) -> f64 {
         .sum()
 }
 
-/// An edge of a ring, with its index: edge `i` runs from vertex `i` to vertex `i + 1`.
-#[derive(Debug, Clone, Copy)]
-struct Edge {
-    index: usize,
-    line: Line,
-}
-
-impl Cross for Edge {
-    type Scalar = f64;
-    fn line(&self) -> Line {
-        self.line
-    }
-}
-
 /// Finds a point where an open ring crosses or touches itself, if there is one.
 ///
-/// Returns the point and the indices of the two edges. Neighbouring edges share their common
+/// Returns the point and the indices of the two edges (edge `i` runs from vertex `i` to
+/// vertex `i + 1`), the first such pair along the ring. Neighbouring edges share their common
 /// vertex and are not reported for it.
+///
+/// A sweep across x: the edges ordered by their western end, each tested against the earlier
+/// ones that still reach it and overlap it in y.
 ///
 /// ```
 /// use furrow::field::ring::find_self_intersection;
@@ -187,8 +178,9 @@ impl Cross for Edge {
 ///     coord! { x: 10.0, y: 0.0 },
 ///     coord! { x: 0.0, y: 10.0 },
 /// ];
-/// let (p, _, _) = find_self_intersection(&bowtie).ok_or("no crossing")?;
+/// let (p, i, j) = find_self_intersection(&bowtie).ok_or("no crossing")?;
 /// assert!((p.x - 5.0).abs() < 1e-9 && (p.y - 5.0).abs() < 1e-9);
+/// assert_eq!((i, j), (0, 2));
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn find_self_intersection(ring: &[Coord]) -> Option<(Coord, usize, usize)> {
@@ -196,30 +188,48 @@ pub fn find_self_intersection(ring: &[Coord]) -> Option<(Coord, usize, usize)> {
     if n < 3 {
         return None;
     }
-    let edges = (0..n).map(|i| Edge {
-        index: i,
-        line: Line::new(ring[i], ring[(i + 1) % n]),
+    let edge = |i: usize| Line::new(ring[i], ring[(i + 1) % n]);
+    let mut order: Vec<usize> = (0..n).collect();
+    order.shared_sort_by_float_key(|&i| {
+        let l = edge(i);
+        l.start.x.lesser(l.end.x)
     });
-    for (a, b, hit) in Intersections::from_iter(edges) {
-        let (i, j) = (a.index.min(b.index), a.index.max(b.index));
-        let neighbours = j == i + 1 || (i == 0 && j == n - 1);
-        match hit {
-            LineIntersection::SinglePoint { intersection, .. } => {
-                if neighbours {
+    // The edges seen so far that may still reach the sweep: (east end, index).
+    let mut active: Vec<(f64, usize)> = Vec::new();
+    let mut first: Option<(usize, usize, Coord)> = None;
+    for &k in &order {
+        let l = edge(k);
+        let (west, east) = (l.start.x.lesser(l.end.x), l.start.x.greater(l.end.x));
+        let (south, north) = (l.start.y.lesser(l.end.y), l.start.y.greater(l.end.y));
+        active.retain(|&(reach, _)| reach >= west);
+        for &(_, m) in &active {
+            let o = edge(m);
+            if o.start.y.greater(o.end.y) < south || o.start.y.lesser(o.end.y) > north {
+                continue;
+            }
+            let Some(hit) = line_intersection(l, o) else {
+                continue;
+            };
+            let (i, j) = (k.min(m), k.max(m));
+            let point = match hit {
+                LineIntersection::SinglePoint { intersection, .. } => {
+                    let neighbours = j == i + 1 || (i == 0 && j == n - 1);
                     // Neighbours meet at their shared vertex; anything else is an overlap.
                     let shared = if j == i + 1 { ring[j] } else { ring[0] };
-                    if distance(intersection, shared) <= SAME_POINT_M {
+                    if neighbours && distance(intersection, shared) <= SAME_POINT_M {
                         continue;
                     }
+                    intersection
                 }
-                return Some((intersection, i, j));
-            }
-            LineIntersection::Collinear { intersection } => {
-                return Some((intersection.start, i, j));
+                LineIntersection::Collinear { intersection } => intersection.start,
+            };
+            if first.is_none_or(|(a, b, _)| (i, j) < (a, b)) {
+                first = Some((i, j, point));
             }
         }
+        active.push((east, k));
     }
-    None
+    first.map(|(i, j, p)| (p, i, j))
 }
 
 #[cfg(test)]
@@ -306,5 +316,53 @@ mod tests {
         ];
         let (p, _, _) = find_self_intersection(&ring).unwrap();
         assert!((p.x - 5.0).abs() < 1e-9 && (p.y - 5.0).abs() < 1e-9);
+    }
+
+    /// Every pair of edges that meets other than at a shared vertex, by geo's sweep.
+    fn crossings_by_geo(ring: &[Coord]) -> Vec<(usize, usize)> {
+        use geo::algorithm::sweep::{Cross, Intersections};
+        #[derive(Debug, Clone, Copy)]
+        struct Edge(usize, Line);
+        impl Cross for Edge {
+            type Scalar = f64;
+            fn line(&self) -> Line {
+                self.1
+            }
+        }
+        let n = ring.len();
+        let edges = (0..n).map(|i| Edge(i, Line::new(ring[i], ring[(i + 1) % n])));
+        let mut pairs: Vec<(usize, usize)> = Intersections::from_iter(edges)
+            .filter_map(|(a, b, hit)| {
+                let (i, j) = (a.0.min(b.0), a.0.max(b.0));
+                let neighbours = j == i + 1 || (i == 0 && j == n - 1);
+                let shared = if j == i + 1 { ring[j] } else { ring[0] };
+                match hit {
+                    LineIntersection::SinglePoint { intersection, .. }
+                        if neighbours && distance(intersection, shared) <= SAME_POINT_M =>
+                    {
+                        None
+                    }
+                    _ => Some((i, j)),
+                }
+            })
+            .collect();
+        pairs.sort();
+        pairs
+    }
+
+    proptest::proptest! {
+        #![proptest_config(crate::seeded::config(512))]
+        /// The sweep finds a crossing exactly when geo's does, and the first pair along the ring.
+        #[test]
+        fn the_first_crossing_along_the_ring_is_found(
+            pts in proptest::collection::vec((0i32..12, 0i32..12), 3..14),
+        ) {
+            // Points on a coarse grid: edges through each other's vertices, collinear overlaps
+            // and shared points are common.
+            let ring: Vec<Coord> = pts.iter().map(|&(x, y)| coord! { x: x as f64, y: y as f64 }).collect();
+            let expected = crossings_by_geo(&ring);
+            let found = find_self_intersection(&ring).map(|(_, i, j)| (i, j));
+            proptest::prop_assert_eq!(found, expected.first().copied());
+        }
     }
 }
