@@ -9,6 +9,7 @@ use crate::geometry::{forbids_every_direction, BearingRange};
 use crate::headland::{EdgePasses, HeadlandMode, HeadlandOrder};
 use crate::objective::{Machine, ObjectiveKind};
 use crate::route::pattern::SwathPattern;
+use crate::sort::SharedSort;
 use serde::{Deserialize, Serialize};
 
 /// How the field is to be planned. Every option has a default; JavaScript passes them as an object
@@ -517,7 +518,7 @@ impl PlanOptions {
             );
         }
         let mut sorted = self.custom_order.clone();
-        sorted.sort_unstable();
+        sorted.shared_sort_unstable_by(Ord::cmp);
         if sorted.iter().enumerate().any(|(i, &p)| p as usize != i) {
             return Err(PlanError::new(
                 ErrorCode::InvalidOption,

@@ -61,8 +61,9 @@ impl<T> SharedSort<T> for [T] {
     }
 }
 
-/// Sorts numbers ascending by [`f64::total_cmp`], by one sort for every slice of `f64` (and
-/// without the indirect calls of [`SharedSort`]). Numbers equal by `total_cmp` have the same
+/// Sorts numbers ascending by [`f64::total_cmp`]: by insertion when short (the crossings of a
+/// line), else by the sort of keys with positions that [`SharedSort::shared_sort_by_float_key`]
+/// uses, without the indirect calls of [`SharedSort`]. Numbers equal by `total_cmp` have the same
 /// bits: the order is that of a stable sort.
 ///
 /// ```
@@ -71,7 +72,24 @@ impl<T> SharedSort<T> for [T] {
 /// assert_eq!(v.map(f64::to_bits), [-3.0, -0.0, 0.0, 2.5].map(f64::to_bits));
 /// ```
 pub fn sort_floats(v: &mut [f64]) {
-    v.sort_unstable_by(f64::total_cmp);
+    if v.len() <= INSERTION_MAX {
+        for i in 1..v.len() {
+            let x = v[i];
+            let mut k = i;
+            while k > 0 && v[k - 1].total_cmp(&x) == Ordering::Greater {
+                v[k] = v[k - 1];
+                k -= 1;
+            }
+            v[k] = x;
+        }
+        return;
+    }
+    // Through the keyed sort: one sort of numbers in the module, not two.
+    let mut keyed: Vec<(f64, usize)> = v.iter().copied().zip(0..).collect();
+    sort_keyed(&mut keyed);
+    for (x, (k, _)) in v.iter_mut().zip(keyed) {
+        *x = k;
+    }
 }
 
 /// Keys with their positions, by key and then position: the order of a stable sort by key.
@@ -201,13 +219,20 @@ mod tests {
             expected.sort_by(|a, b| a.0.total_cmp(&b.0));
             assert_eq!(ours, expected, "{n} elements");
         }
-        let mut floats: Vec<f64> = (0..50)
-            .map(|i| ((i * 13) % 11) as f64 * 0.5 - 2.0)
-            .collect();
-        let mut expected = floats.clone();
-        expected.sort_by(f64::total_cmp);
-        sort_floats(&mut floats);
-        assert_eq!(floats, expected);
+        for n in [0, 1, 7, INSERTION_MAX, INSERTION_MAX + 1, 50] {
+            let mut floats: Vec<f64> = (0..n)
+                .map(|i| match i % 9 {
+                    4 => -0.0,
+                    7 => 0.0,
+                    _ => ((i * 13) % 11) as f64 * 0.5 - 2.0,
+                })
+                .collect();
+            let mut expected = floats.clone();
+            expected.sort_by(f64::total_cmp);
+            sort_floats(&mut floats);
+            let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+            assert_eq!(bits(&floats), bits(&expected), "{n} numbers");
+        }
     }
 
     #[test]
