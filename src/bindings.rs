@@ -203,13 +203,7 @@ fn plan_tracks(plan: &JsValue, options: &PathOptions) -> Result<PlanTracks, Plan
             )
         })?;
     let text = json_text(&features)?;
-    let features: serde_json::Value = serde_json::from_str(&text).map_err(|e| {
-        PlanError::new(
-            ErrorCode::InvalidGeojson,
-            format!("the plan's features: {e}"),
-        )
-    })?;
-    PlanTracks::from_value(&serde_json::json!({ "features": features }), coordinates)
+    PlanTracks::from_geojson(&format!("{{\"features\":{text}}}"), coordinates)
 }
 
 fn answer(

@@ -17,8 +17,8 @@
 //! // From mid-field, facing north, to the field's south-west corner.
 //! let path = direct.shortest_path([24.053, 60.251], 0.0, &[[24.05, 60.25]], Turning::Heading)?;
 //! let feature = direct.to_feature(&path, Turning::Heading);
-//! assert_eq!(feature["geometry"]["type"], "LineString");
-//! assert!(feature["properties"]["length_m"].as_f64().unwrap_or(0.0) > 100.0);
+//! assert_eq!(feature.geometry.kind, "LineString");
+//! assert!(feature.properties.length_m > 100.0);
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
@@ -29,7 +29,10 @@ use crate::error::{ErrorCode, PlanError};
 use crate::field::{Coordinates, Frame, TransverseMercator};
 use crate::plan::Plan;
 use geo::Coord;
-use serde_json::{json, Value};
+use serde::de::{self, IgnoredAny, SeqAccess, Visitor};
+use serde::{Deserialize, Deserializer, Serialize};
+use serde_json::value::RawValue;
+use std::fmt;
 
 /// A plan's track graph and the frame between its metres and the input's coordinates.
 #[derive(Debug, Clone)]
@@ -51,54 +54,24 @@ impl PlanTracks {
 
     /// The tracks of a plan's GeoJSON text (the planner's output, as saved or passed back):
     /// its drivable features (`kind` swath, headland, turn, connection); the headland pass with
-    /// `around: "field"` and `pass: 1` is the boundary lane.
+    /// `around: "field"` and `pass: 1` is the boundary lane. Other features, and members of
+    /// other types than the planner writes, are passed over; a track's position that is not
+    /// two numbers is an error.
     pub fn from_geojson(text: &str, coordinates: Coordinates) -> Result<PlanTracks, PlanError> {
-        let value: Value = serde_json::from_str(text).map_err(|e| {
-            PlanError::new(ErrorCode::InvalidJson, format!("the plan is not JSON: {e}"))
-        })?;
-        PlanTracks::from_value(&value, coordinates)
-    }
-
-    /// As [`PlanTracks::from_geojson`], from a parsed value.
-    pub fn from_value(value: &Value, coordinates: Coordinates) -> Result<PlanTracks, PlanError> {
         let invalid = |m: &str| PlanError::new(ErrorCode::InvalidGeojson, m.to_string());
-        let features = value
-            .get("features")
-            .and_then(Value::as_array)
-            .ok_or_else(|| invalid("a plan is a FeatureCollection: it has no `features`"))?;
-        let mut lines: Vec<(TrackKind, bool, Vec<[f64; 2]>)> = Vec::new();
-        for f in features {
-            let props = f.get("properties");
-            let kind = match props.and_then(|p| p.get("kind")).and_then(Value::as_str) {
-                Some("swath") => TrackKind::Swath,
-                Some("headland") => TrackKind::HeadlandPass,
-                Some("turn") => TrackKind::Turn,
-                Some("connection") => TrackKind::Connection,
-                _ => continue,
-            };
-            let geometry = f.get("geometry");
-            if geometry.and_then(|g| g.get("type")).and_then(Value::as_str) != Some("LineString") {
-                continue;
+        let plan: RawPlan = serde_json::from_str(text).map_err(|e| {
+            if e.is_syntax() || e.is_eof() {
+                PlanError::new(ErrorCode::InvalidJson, format!("the plan is not JSON: {e}"))
+            } else {
+                invalid("a plan is a FeatureCollection: it has no `features`")
             }
-            let Some(coords) = geometry
-                .and_then(|g| g.get("coordinates"))
-                .and_then(Value::as_array)
-            else {
+        })?;
+        let mut lines: Vec<PlanLine> = Vec::new();
+        for f in plan.features {
+            let Some(track) = track_of(f)? else {
                 continue;
             };
-            let mut pts = Vec::with_capacity(coords.len());
-            for c in coords {
-                let x = c.get(0).and_then(Value::as_f64);
-                let y = c.get(1).and_then(Value::as_f64);
-                match (x, y) {
-                    (Some(x), Some(y)) if x.is_finite() && y.is_finite() => pts.push([x, y]),
-                    _ => return Err(invalid("a track's position is not two numbers")),
-                }
-            }
-            let boundary = kind == TrackKind::HeadlandPass
-                && props.and_then(|p| p.get("around")).and_then(Value::as_str) == Some("field")
-                && props.and_then(|p| p.get("pass")).and_then(Value::as_u64) == Some(1);
-            lines.push((kind, boundary, pts));
+            lines.push(track);
         }
         if lines.is_empty() {
             return Err(PlanError::new(
@@ -189,32 +162,256 @@ impl PlanTracks {
     /// `length_m`, the `turning` asked for, the `target` reached (index), `start_offset_m` (how
     /// far the machine was from the tracks), `turns_on_the_spot`, `expanded` (states the search
     /// expanded) and `tracks` (the kinds of the tracks driven, in order, each once per stretch).
-    pub fn to_feature(&self, path: &TrackPath, turning: Turning) -> Value {
-        let coords: Vec<[f64; 2]> = path
+    pub fn to_feature(&self, path: &TrackPath, turning: Turning) -> TrackPathFeature {
+        let coordinates: Vec<[f64; 2]> = path
             .points
             .iter()
             .map(|&p| self.frame.to_output(p))
             .collect();
-        let mut kinds: Vec<&'static str> = Vec::new();
+        let mut tracks: Vec<&'static str> = Vec::new();
         for s in &path.stretches {
             let kind = self.graph.tracks()[s.track].kind.as_str();
-            if kinds.last() != Some(&kind) {
-                kinds.push(kind);
+            if tracks.last() != Some(&kind) {
+                tracks.push(kind);
             }
         }
-        json!({
-            "type": "Feature",
-            "properties": {
-                "kind": "track_path",
-                "length_m": (path.length * 1000.0).round() / 1000.0,
-                "turning": turning.as_str(),
-                "target": path.target,
-                "start_offset_m": (path.start_offset * 1000.0).round() / 1000.0,
-                "turns_on_the_spot": path.turns_on_the_spot,
-                "expanded": path.expanded,
-                "tracks": kinds,
+        TrackPathFeature {
+            kind: "Feature",
+            properties: TrackPathProperties {
+                kind: "track_path",
+                length_m: (path.length * 1000.0).round() / 1000.0,
+                turning: turning.as_str(),
+                target: path.target,
+                start_offset_m: (path.start_offset * 1000.0).round() / 1000.0,
+                turns_on_the_spot: path.turns_on_the_spot,
+                expanded: path.expanded,
+                tracks,
             },
-            "geometry": { "type": "LineString", "coordinates": coords },
-        })
+            geometry: TrackPathGeometry {
+                kind: "LineString",
+                coordinates,
+            },
+        }
+    }
+}
+
+/// A shortest path along the tracks as a GeoJSON Feature ([`PlanTracks::to_feature`]).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct TrackPathFeature {
+    /// `"Feature"`.
+    #[serde(rename = "type")]
+    pub kind: &'static str,
+    /// What the path is.
+    pub properties: TrackPathProperties,
+    /// Its line.
+    pub geometry: TrackPathGeometry,
+}
+
+/// The properties of a [`TrackPathFeature`].
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct TrackPathProperties {
+    /// `"track_path"`.
+    pub kind: &'static str,
+    /// Length, metres (to the millimetre).
+    pub length_m: f64,
+    /// The way of turning asked for.
+    pub turning: &'static str,
+    /// Which of the targets was reached (index).
+    pub target: usize,
+    /// How far the machine was from the tracks, metres.
+    pub start_offset_m: f64,
+    /// Turns on the spot on the way.
+    pub turns_on_the_spot: usize,
+    /// States the search expanded.
+    pub expanded: usize,
+    /// The kinds of the tracks driven, in order, each once per stretch.
+    pub tracks: Vec<&'static str>,
+}
+
+/// The line of a [`TrackPathFeature`].
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct TrackPathGeometry {
+    /// `"LineString"`.
+    #[serde(rename = "type")]
+    pub kind: &'static str,
+    /// Positions in the input's coordinates.
+    pub coordinates: Vec<[f64; 2]>,
+}
+
+/// A plan's GeoJSON as the track reader sees it: its features, each read on its own.
+#[derive(Deserialize)]
+struct RawPlan<'a> {
+    #[serde(borrow)]
+    features: Vec<&'a RawValue>,
+}
+
+/// The members of a feature that make a track, unread until they are needed.
+#[derive(Deserialize)]
+struct RawFeature<'a> {
+    #[serde(default, borrow)]
+    properties: Option<RawMembers<'a>>,
+    #[serde(default, borrow)]
+    geometry: Option<RawMembers<'a>>,
+}
+
+/// The members of a feature's properties and geometry the reader looks at.
+#[derive(Deserialize)]
+struct RawMembers<'a> {
+    #[serde(default, borrow, rename = "type")]
+    kind_of_geometry: Option<&'a RawValue>,
+    #[serde(default, borrow)]
+    coordinates: Option<&'a RawValue>,
+    #[serde(default, borrow)]
+    kind: Option<&'a RawValue>,
+    #[serde(default, borrow)]
+    around: Option<&'a RawValue>,
+    #[serde(default, borrow)]
+    pass: Option<&'a RawValue>,
+}
+
+/// A member's value if it is of type `T`.
+fn member<'a, T: Deserialize<'a>>(raw: Option<&'a RawValue>) -> Option<T> {
+    raw.and_then(|r| serde_json::from_str(r.get()).ok())
+}
+
+/// A track as a plan's GeoJSON gives it: its kind, whether it is the boundary lane, and its
+/// positions in the plan's coordinates.
+type PlanLine = (TrackKind, bool, Vec<[f64; 2]>);
+
+/// The track a feature of a plan is, if it is one: its kind, whether it is the boundary lane,
+/// and its positions.
+fn track_of(feature: &RawValue) -> Result<Option<PlanLine>, PlanError> {
+    let Ok(f) = serde_json::from_str::<RawFeature>(feature.get()) else {
+        return Ok(None);
+    };
+    let (Some(props), Some(geometry)) = (f.properties, f.geometry) else {
+        return Ok(None);
+    };
+    let kind = match member::<String>(props.kind).as_deref() {
+        Some("swath") => TrackKind::Swath,
+        Some("headland") => TrackKind::HeadlandPass,
+        Some("turn") => TrackKind::Turn,
+        Some("connection") => TrackKind::Connection,
+        _ => return Ok(None),
+    };
+    if member::<String>(geometry.kind_of_geometry).as_deref() != Some("LineString") {
+        return Ok(None);
+    }
+    let Some(positions) = member::<Vec<&RawValue>>(geometry.coordinates) else {
+        return Ok(None);
+    };
+    let mut pts = Vec::with_capacity(positions.len());
+    for p in positions {
+        match serde_json::from_str::<Position>(p.get()) {
+            Ok(Position([x, y])) if x.is_finite() && y.is_finite() => pts.push([x, y]),
+            _ => {
+                return Err(PlanError::new(
+                    ErrorCode::InvalidGeojson,
+                    "a track's position is not two numbers",
+                ))
+            }
+        }
+    }
+    let boundary = kind == TrackKind::HeadlandPass
+        && member::<String>(props.around).as_deref() == Some("field")
+        && member::<u64>(props.pass) == Some(1);
+    Ok(Some((kind, boundary, pts)))
+}
+
+/// A position: its first two numbers (an altitude after them is passed over).
+struct Position([f64; 2]);
+
+impl<'de> Deserialize<'de> for Position {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct PositionVisitor;
+        impl<'de> Visitor<'de> for PositionVisitor {
+            type Value = Position;
+            fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
+                f.write_str("a position of two numbers")
+            }
+            fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<Position, A::Error> {
+                let x: f64 = seq
+                    .next_element()?
+                    .ok_or_else(|| de::Error::invalid_length(0, &self))?;
+                let y: f64 = seq
+                    .next_element()?
+                    .ok_or_else(|| de::Error::invalid_length(1, &self))?;
+                while seq.next_element::<IgnoredAny>()?.is_some() {}
+                Ok(Position([x, y]))
+            }
+        }
+        d.deserialize_seq(PositionVisitor)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const LANE: &str = r#"{"type":"Feature","properties":{"kind":"headland","around":"field","pass":1},
+        "geometry":{"type":"LineString","coordinates":[[0,0],[100,0,3.5],[100,50],[0,50],[0,0]]}}"#;
+    const SWATH: &str = r#"{"type":"Feature","properties":{"kind":"swath","index":0},
+        "geometry":{"type":"LineString","coordinates":[[10,10],[90,10]]}}"#;
+
+    fn read(features: &[&str]) -> Result<PlanTracks, PlanError> {
+        let text = format!(
+            r#"{{"type":"FeatureCollection","features":[{}]}}"#,
+            features.join(",")
+        );
+        PlanTracks::from_geojson(&text, Coordinates::Metric)
+    }
+
+    #[test]
+    fn the_drivable_lines_of_a_plan_are_its_tracks() {
+        // A point, a polygon, a feature without properties, a kind the reader does not know,
+        // members of other types, a number for a feature: passed over.
+        let others = [
+            r#"{"type":"Feature","properties":{"kind":"entrance"},"geometry":{"type":"Point","coordinates":[0,0]}}"#,
+            r#"{"type":"Feature","properties":{"kind":"block"},"geometry":{"type":"Polygon","coordinates":[[[0,0],[1,0],[1,1],[0,0]]]}}"#,
+            r#"{"type":"Feature","geometry":{"type":"LineString","coordinates":[[0,0],[1,0]]}}"#,
+            r#"{"type":"Feature","properties":{"kind":7},"geometry":{"type":"LineString","coordinates":[[0,0],[1,0]]}}"#,
+            r#"{"type":"Feature","properties":{"kind":"turn"},"geometry":{"type":"LineString","coordinates":"none"}}"#,
+            "42",
+        ];
+        let mut all = vec![LANE, SWATH];
+        all.extend(others);
+        let tracks = read(&all).unwrap();
+        let kinds: Vec<TrackKind> = tracks.graph.tracks().iter().map(|t| t.kind).collect();
+        assert_eq!(kinds.len(), 2, "{kinds:?}");
+        assert!(kinds.contains(&TrackKind::HeadlandPass) && kinds.contains(&TrackKind::Swath));
+        assert_eq!(
+            tracks.graph.tracks().iter().filter(|t| t.boundary).count(),
+            1
+        );
+    }
+
+    #[test]
+    fn a_plan_that_is_no_plan_is_refused_with_its_code() {
+        let no_json = PlanTracks::from_geojson("{\"features\": [", Coordinates::Metric);
+        assert_eq!(no_json.unwrap_err().code, ErrorCode::InvalidJson);
+        let no_features = PlanTracks::from_geojson(r#"{"type":"Feature"}"#, Coordinates::Metric);
+        assert_eq!(no_features.unwrap_err().code, ErrorCode::InvalidGeojson);
+        assert_eq!(read(&[]).unwrap_err().code, ErrorCode::NoPath);
+        // JSON.stringify writes NaN as null.
+        let nan = SWATH.replace("[90,10]", "[null,10]");
+        assert_eq!(read(&[&nan]).unwrap_err().code, ErrorCode::InvalidGeojson);
+    }
+
+    #[test]
+    fn a_path_is_written_as_a_line_feature() {
+        let tracks = read(&[LANE, SWATH]).unwrap();
+        let path = tracks
+            .shortest_path([50.0, 0.0], 90.0, &[[0.0, 50.0]], Turning::Tracks)
+            .unwrap();
+        let feature = tracks.to_feature(&path, Turning::Tracks);
+        let v: serde_json::Value = serde_json::to_value(&feature).unwrap();
+        assert_eq!(v["type"], "Feature");
+        assert_eq!(v["geometry"]["type"], "LineString");
+        assert_eq!(v["properties"]["kind"], "track_path");
+        assert_eq!(v["properties"]["turning"], Turning::Tracks.as_str());
+        assert!(v["properties"]["length_m"].as_f64().unwrap() > 40.0);
+        assert!(v["properties"]["tracks"]
+            .as_array()
+            .is_some_and(|t| !t.is_empty()));
     }
 }
