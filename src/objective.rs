@@ -124,6 +124,46 @@ pub fn turn_length(spacing: f64, radius: f64) -> f64 {
     }
 }
 
+/// [`turn_length`] at one turning radius, remembering the last spacing: the turns of a block
+/// are mostly between neighbouring swaths, one spacing apart, and the length is an arc cosine
+/// (a routine in software in WebAssembly) that planning asks for every turn of every block at
+/// every direction tried. The same numbers as [`turn_length`].
+///
+/// ```
+/// use furrow::objective::{turn_length, TurnLengths};
+///
+/// let mut lengths = TurnLengths::new(8.0);
+/// assert_eq!(lengths.of(6.0), turn_length(6.0, 8.0));
+/// assert_eq!(lengths.of(-6.0), turn_length(6.0, 8.0));
+/// assert_eq!(lengths.of(20.0), turn_length(20.0, 8.0));
+/// ```
+#[derive(Debug, Clone, Copy)]
+pub struct TurnLengths {
+    radius: f64,
+    last: Option<(f64, f64)>,
+}
+
+impl TurnLengths {
+    /// Turn lengths at this turning radius.
+    pub fn new(radius: f64) -> Self {
+        TurnLengths { radius, last: None }
+    }
+
+    /// [`turn_length`] of `spacing` (either sign) at the radius.
+    #[inline]
+    pub fn of(&mut self, spacing: f64) -> f64 {
+        let d = spacing.abs();
+        match self.last {
+            Some((at, length)) if at == d => length,
+            _ => {
+                let length = turn_length(d, self.radius);
+                self.last = Some((d, length));
+                length
+            }
+        }
+    }
+}
+
 /// A cost to minimise over driving directions.
 pub trait Objective {
     /// The objective's name, as the options spell it.
@@ -366,6 +406,7 @@ pub fn measure_turns(swaths: &[Swath], width: f64, area_m2: f64, m: &Machine) ->
     stats.strip_area_m2 = stats.swath_length_m * width;
     let blocks = block_members(swaths);
     let mut previous_corners: Option<[Coord; 4]> = None;
+    let mut lengths = TurnLengths::new(m.turn_radius);
     for block in &blocks {
         for (k, pair) in block.windows(2).enumerate() {
             let (a, b) = (&swaths[pair[0]], &swaths[pair[1]]);
@@ -376,7 +417,7 @@ pub fn measure_turns(swaths: &[Swath], width: f64, area_m2: f64, m: &Machine) ->
                 (a.along.0 - b.along.0).abs()
             };
             stats.turn_count += 1;
-            stats.turning_distance_m += turn_length(b.across - a.across, m.turn_radius) + run;
+            stats.turning_distance_m += lengths.of(b.across - a.across) + run;
         }
         // Moving on from the block before (blocks are found across the field, so neighbours
         // follow each other): a turn, and the way from its nearest corner to this block's.

@@ -25,7 +25,7 @@
 use crate::error::Warning;
 use crate::field::projection::OutputAlong;
 use crate::field::Frame;
-use crate::geometry::bearing_of;
+use crate::geometry::{bearing_of, round_half_away};
 use crate::metrics::Summary;
 use crate::obstacles::ObstacleClass;
 use crate::path::curve::Gear;
@@ -415,6 +415,6 @@ impl Output<'_> {
 /// `v` rounded to a multiple of `step` (a negative power of ten). Dividing by the exact integer
 /// `1 / step` gives the double nearest the decimal, so it prints short.
 fn round(v: f64, step: f64) -> f64 {
-    let scale = (1.0 / step).round();
-    (v * scale).round() / scale
+    let scale = round_half_away(1.0 / step);
+    round_half_away(v * scale) / scale
 }

@@ -32,7 +32,7 @@ use crate::direction::{
 use crate::error::PlanError;
 use crate::field::ProhibitedRegion;
 use crate::geometry::{forbids_every_direction, BearingRange, SweepFrame};
-use crate::objective::{turn_length, Machine};
+use crate::objective::{turn_length, Machine, TurnLengths};
 use crate::prohibited::{constraints_in, forbidding, split};
 use crate::route::pattern::SwathOrder;
 use crate::sort::SharedSort;
@@ -547,6 +547,7 @@ pub fn cell_work(trapezoids: &[Trapezoid], cell: &[usize], s: &SplitMergeSetting
     };
     let mut previous: Option<(f64, (f64, f64))> = None;
     let mut k = 0;
+    let mut lengths = TurnLengths::new(s.machine.turn_radius);
     for c in line_offsets(first.across.0, last.across.1, s.width) {
         let t = ts.partition_point(|t| t.across.1 < c).min(ts.len() - 1);
         let (a0, a1) = ts[t].ends_at(c);
@@ -562,7 +563,7 @@ pub fn cell_work(trapezoids: &[Trapezoid], cell: &[usize], s: &SplitMergeSetting
             } else {
                 (a0 - p0).abs()
             };
-            work.turning_m += turn_length(c - pc, s.machine.turn_radius) + run;
+            work.turning_m += lengths.of(c - pc) + run;
             k += 1;
         }
         previous = Some((c, (a0, a1)));

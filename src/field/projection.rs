@@ -10,7 +10,7 @@
 //! Grid north and true north agree on the central meridian; 1 km east or west of it they differ by
 //! about `0.009° · sin(latitude)`, so compass bearings can be used in the frame unchanged.
 
-use crate::geometry::PlanarHypot;
+use crate::geometry::{round_half_away, PlanarHypot};
 use geo::Coord;
 
 /// WGS84 semi-major axis in metres.
@@ -237,7 +237,10 @@ impl Frame {
             Frame::Metric => 1e4,
         };
         // Dividing by the exact integer scale gives the double nearest the decimal: it prints short.
-        [(x * scale).round() / scale, (y * scale).round() / scale]
+        [
+            round_half_away(x * scale) / scale,
+            round_half_away(y * scale) / scale,
+        ]
     }
 
     /// The map to output coordinates near `p` as an affine map of local metres (exact at `p`,
@@ -298,8 +301,8 @@ impl NearOutput {
         let x = self.at[0] + u * self.dx[0] + v * self.dy[0];
         let y = self.at[1] + u * self.dx[1] + v * self.dy[1];
         [
-            (x * self.scale).round() / self.scale,
-            (y * self.scale).round() / self.scale,
+            round_half_away(x * self.scale) / self.scale,
+            round_half_away(y * self.scale) / self.scale,
         ]
     }
 }

@@ -1,5 +1,5 @@
 //! Small geometric helpers shared by the pipeline stages: compass bearings, point-to-segment
-//! distance, the planar `hypot`, `min` and `max` of the hot loops, Douglas-Peucker
+//! distance, the planar `hypot`, `min`, `max` and `round` of the hot loops, Douglas-Peucker
 //! simplification, whether two polygons come within a distance, segments for R-trees, and sets
 //! of parallel lines clipped by polygons (the core of swath generation; one such line limited
 //! to a segment).
@@ -9,6 +9,7 @@ pub mod bearing_range;
 pub mod distance;
 pub mod parallel_lines;
 pub mod polygon_distance;
+pub mod round;
 pub mod segment_tree;
 pub mod simplify;
 
@@ -17,5 +18,6 @@ pub use bearing_range::{forbids_every_direction, BearingRange};
 pub use distance::{point_segment_distance, Extremes, PlanarHypot};
 pub use parallel_lines::{clip_segment, SweepFrame};
 pub use polygon_distance::polygons_within;
+pub use round::round_half_away;
 pub use segment_tree::IndexedSegment;
 pub use simplify::PlanarSimplify;

@@ -134,10 +134,65 @@ pub fn sample(path: &Path, spacing: f64, v: &Vehicle) -> Samples {
 
 /// A heading (radians counter-clockwise from east) as a compass bearing in degrees, [0, 360).
 pub fn compass_deg(heading: f64) -> f64 {
-    let b = (90.0 - heading.to_degrees()).rem_euclid(360.0);
+    let b = 90.0 - heading.to_degrees();
+    // A turn or two from [0, 360) by adding or subtracting 360 (exact, as `rem_euclid` is),
+    // without the remainder routine that `rem_euclid` calls in WebAssembly.
+    let b = if (0.0..360.0).contains(&b) {
+        b
+    } else if b > -360.0 && b < 0.0 {
+        b + 360.0
+    } else if (360.0..720.0).contains(&b) {
+        b - 360.0
+    } else {
+        b.rem_euclid(360.0)
+    };
     if b >= 360.0 {
         0.0
     } else {
         b
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    fn by_remainder(heading: f64) -> f64 {
+        let b = (90.0 - heading.to_degrees()).rem_euclid(360.0);
+        if b >= 360.0 {
+            0.0
+        } else {
+            b
+        }
+    }
+
+    #[test]
+    fn whole_turns_and_their_edges_are_bearings_in_range() {
+        use std::f64::consts::PI;
+        for h in [
+            0.0,
+            -0.0,
+            PI / 2.0,
+            -PI / 2.0,
+            2.5 * PI,
+            -1.5 * PI,
+            7.0 * PI,
+            -9.0 * PI,
+            1e-17,
+            -1e-17,
+        ] {
+            assert_eq!(compass_deg(h).to_bits(), by_remainder(h).to_bits(), "{h}");
+            assert!((0.0..360.0).contains(&compass_deg(h)));
+        }
+    }
+
+    proptest! {
+        #![proptest_config(crate::seeded::config(4096))]
+        /// The same bearing, to the bit, as the remainder it replaces.
+        #[test]
+        fn the_same_as_the_remainder(h in -60.0..60.0f64) {
+            prop_assert_eq!(compass_deg(h).to_bits(), by_remainder(h).to_bits());
+        }
     }
 }

@@ -19,7 +19,7 @@
 //! assert_eq!(SwathOrder::Spiral { size: 6 }.positions(8), vec![0, 5, 1, 4, 2, 3, 6, 7]);
 //! ```
 
-use crate::objective::turn_length;
+use crate::objective::{turn_length, TurnLengths};
 use crate::swath::Swath;
 use serde::{Deserialize, Serialize};
 
@@ -314,9 +314,10 @@ fn sequences(
 pub fn turning_of(sequence: &[usize], first_reversed: bool, swaths: &[Swath], radius: f64) -> f64 {
     let mut reversed = first_reversed;
     let mut total = 0.0;
+    let mut lengths = TurnLengths::new(radius);
     for w in sequence.windows(2) {
         if let (Some(a), Some(b)) = (swaths.get(w[0]), swaths.get(w[1])) {
-            total += turn_between(a, reversed, b, radius);
+            total += lengths.of(a.across - b.across) + stagger(a, reversed, b);
         }
         reversed = !reversed;
     }
@@ -327,13 +328,17 @@ pub fn turning_of(sequence: &[usize], first_reversed: bool, swaths: &[Swath], ra
 /// `a_reversed`) into swath `b`, driven the other way: a turn for the spacing between them,
 /// and the stagger between the ends.
 pub fn turn_between(a: &Swath, a_reversed: bool, b: &Swath, radius: f64) -> f64 {
-    let spacing = (a.across - b.across).abs();
-    let stagger = if a_reversed {
+    turn_length(a.across - b.across, radius) + stagger(a, a_reversed, b)
+}
+
+/// How far apart the ends of `a` and `b` lie along the swaths at the end the turn from `a`
+/// (driven against its direction if `a_reversed`) is made.
+fn stagger(a: &Swath, a_reversed: bool, b: &Swath) -> f64 {
+    if a_reversed {
         (a.along.0 - b.along.0).abs()
     } else {
         (a.along.1 - b.along.1).abs()
-    };
-    turn_length(spacing, radius) + stagger
+    }
 }
 
 #[cfg(test)]
