@@ -38,16 +38,21 @@ pub fn plan_js(field: JsValue, options: JsValue) -> Result<JsValue, JsValue> {
     // An object is read as its JSON text: one string across the boundary rather than a call
     // per property, and one reader for both forms. NaN and Infinity become null there, which
     // the reader takes for a coordinate that is not a finite number.
-    let text = match field.as_string() {
-        Some(text) => text,
-        None => json_text(&field).map_err(|_| {
-            to_js_error(&PlanError::new(
-                ErrorCode::InvalidGeojson,
-                "the field must be GeoJSON: its text, or an object of plain values",
-            ))
-        })?,
+    let (text, object) = match field.as_string() {
+        Some(text) => (text, false),
+        None => (
+            json_text(&field).map_err(|_| {
+                to_js_error(&PlanError::new(
+                    ErrorCode::InvalidGeojson,
+                    "the field must be GeoJSON: its text, or an object of plain values",
+                ))
+            })?,
+            true,
+        ),
     };
-    let input = geojson::parse_str(&text).map_err(|e| to_js_error(&e))?;
+    let input = geojson::parse_str(&text)
+        .map_err(|e| if object { without_text_place(e) } else { e })
+        .map_err(|e| to_js_error(&e))?;
     let (field, warnings) =
         validate::field_from_input(input, options.coordinates).map_err(|e| to_js_error(&e))?;
     let read_ms = started.elapsed().as_secs_f64() * 1000.0;
@@ -286,6 +291,17 @@ fn read_options(options: JsValue) -> Result<PlanOptions, PlanError> {
             )
         })?;
     PlanOptions::from_json_str(&text)
+}
+
+/// An error in reading an object through its JSON text, without the place in that text (which
+/// the caller never saw): its feature says where.
+fn without_text_place(mut e: PlanError) -> PlanError {
+    if let Some(at) = e.message.rfind(" at line ") {
+        e.message.truncate(at);
+    }
+    e.line = None;
+    e.column = None;
+    e
 }
 
 /// A `PlanError` as a JavaScript `Error` with `code` and the location fields.

@@ -140,6 +140,23 @@ fn js_errors_carry_a_code_and_a_place() {
     let err = plan_js(nan, JsValue::UNDEFINED).expect_err("NaN fails");
     assert_eq!(get(&err, "code"), "non_finite_coordinate");
     assert_eq!(get(&err, "vertex").as_f64(), Some(1.0));
+
+    // An object is read through its JSON text: its errors name the feature, not a place in
+    // that text.
+    let bad = JSON::parse(
+        r#"{"type":"FeatureCollection","features":[{"type":"Feature","geometry":null},
+        {"type":"Feature","geometry":{"type":"Polygon","coordinates":"none"}}]}"#,
+    )
+    .expect("JSON");
+    let err = plan_js(bad, JsValue::UNDEFINED).expect_err("bad coordinates");
+    assert_eq!(get(&err, "code"), "invalid_geojson");
+    assert_eq!(get(&err, "feature").as_f64(), Some(1.0));
+    assert!(get(&err, "line").is_undefined());
+    let message = get(&err, "message").as_string().unwrap_or_default();
+    assert!(
+        !message.contains("line") && message.contains("GeoJSON"),
+        "{message}"
+    );
 }
 
 #[wasm_bindgen_test]
