@@ -88,6 +88,7 @@ pub fn sample(path: &Path, spacing: f64, v: &Vehicle) -> Samples {
         segment: Vec::with_capacity(capacity),
     };
     let (mut distance, mut time) = (0.0, 0.0);
+    let mut along: Vec<f64> = Vec::new();
     for (index, seg) in path.segments.iter().enumerate() {
         let working = seg.is_working();
         let speed = if working {
@@ -99,32 +100,39 @@ pub fn sample(path: &Path, spacing: f64, v: &Vehicle) -> Samples {
         for piece in &seg.pieces {
             let n = ((piece.length / spacing).ceil() as usize).max(1);
             let first = usize::from(!out.is_empty());
+            // The distances along the piece, once: every column is made from them.
+            along.clear();
+            along.extend((first..=n).map(|i| piece.length * i as f64 / n as f64));
+            let count = along.len();
             // Lines (most of a path: the swaths) step along without trigonometry.
-            let straight = piece.curvature == 0.0 && piece.sharpness == 0.0;
-            let g = piece.gear.sign();
-            let (dy, dx) = piece.start.heading.sin_cos();
-            let line_heading = compass_deg(piece.start.heading);
-            let poses = piece.poses();
-            for i in first..=n {
-                let s = piece.length * i as f64 / n as f64;
-                if straight {
-                    out.x.push(piece.start.x + g * dx * s);
-                    out.y.push(piece.start.y + g * dy * s);
-                    out.heading_deg.push(line_heading);
-                } else {
+            if piece.curvature == 0.0 && piece.sharpness == 0.0 {
+                let g = piece.gear.sign();
+                let (dy, dx) = piece.start.heading.sin_cos();
+                let (x, y) = (piece.start.x, piece.start.y);
+                out.x.extend(along.iter().map(|&s| x + g * dx * s));
+                out.y.extend(along.iter().map(|&s| y + g * dy * s));
+                let heading = compass_deg(piece.start.heading);
+                out.heading_deg.extend(std::iter::repeat_n(heading, count));
+            } else {
+                let poses = piece.poses();
+                for &s in &along {
                     let p = poses.at(s);
                     out.x.push(p.x);
                     out.y.push(p.y);
                     out.heading_deg.push(compass_deg(p.heading));
                 }
-                out.curvature.push(piece.curvature_at(s));
-                out.distance_m.push(distance + s);
-                out.time_s.push(time + s / speed);
-                out.kind.push(seg.kind.code());
-                out.reverse.push(u8::from(piece.gear == Gear::Reverse));
-                out.working.push(u8::from(working));
-                out.segment.push(index as u32);
             }
+            out.curvature
+                .extend(along.iter().map(|&s| piece.curvature_at(s)));
+            out.distance_m.extend(along.iter().map(|&s| distance + s));
+            out.time_s.extend(along.iter().map(|&s| time + s / speed));
+            // The columns that stay the same along a piece, filled.
+            out.kind.extend(std::iter::repeat_n(seg.kind.code(), count));
+            let reverse = u8::from(piece.gear == Gear::Reverse);
+            out.reverse.extend(std::iter::repeat_n(reverse, count));
+            out.working
+                .extend(std::iter::repeat_n(u8::from(working), count));
+            out.segment.extend(std::iter::repeat_n(index as u32, count));
             distance += piece.length;
             time += piece.length / speed;
         }
