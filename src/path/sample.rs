@@ -109,8 +109,10 @@ pub fn sample(path: &Path, spacing: f64, v: &Vehicle) -> Samples {
                 let g = piece.gear.sign();
                 let (dy, dx) = piece.start.heading.sin_cos();
                 let (x, y) = (piece.start.x, piece.start.y);
-                out.x.extend(along.iter().map(|&s| x + g * dx * s));
-                out.y.extend(along.iter().map(|&s| y + g * dy * s));
+                for &s in &along {
+                    out.x.push(x + g * dx * s);
+                    out.y.push(y + g * dy * s);
+                }
                 let heading = compass_deg(piece.start.heading);
                 out.heading_deg.extend(std::iter::repeat_n(heading, count));
             } else {
@@ -122,10 +124,11 @@ pub fn sample(path: &Path, spacing: f64, v: &Vehicle) -> Samples {
                     out.heading_deg.push(compass_deg(p.heading));
                 }
             }
-            out.curvature
-                .extend(along.iter().map(|&s| piece.curvature_at(s)));
-            out.distance_m.extend(along.iter().map(|&s| distance + s));
-            out.time_s.extend(along.iter().map(|&s| time + s / speed));
+            for &s in &along {
+                out.curvature.push(piece.curvature_at(s));
+                out.distance_m.push(distance + s);
+                out.time_s.push(time + s / speed);
+            }
             // The columns that stay the same along a piece, filled.
             out.kind.extend(std::iter::repeat_n(seg.kind.code(), count));
             let reverse = u8::from(piece.gear == Gear::Reverse);
