@@ -1,4 +1,4 @@
-//! Distance from a point to a segment, the building block of the nearest-edge queries of the
+//! Distance from a point to a segment and the nearest point on it, the building block of the nearest-edge queries of the
 //! headland and route stages; and the length of a vector without the library's `hypot`.
 
 use geo::Coord;
@@ -14,6 +14,22 @@ use geo::Coord;
 /// assert_eq!(point_segment_distance(coord! { x: 13.0, y: 4.0 }, a, b), 5.0);
 /// ```
 pub fn point_segment_distance(p: Coord, a: Coord, b: Coord) -> f64 {
+    let (q, _) = segment_foot(p, a, b);
+    (p.x - q.x).planar_hypot(p.y - q.y)
+}
+
+/// The point of the segment `a`–`b` nearest to `p`, and its distance from `a` along the
+/// segment.
+///
+/// ```
+/// use furrow::geometry::segment_foot;
+/// use geo::coord;
+///
+/// let (a, b) = (coord! { x: 0.0, y: 0.0 }, coord! { x: 10.0, y: 0.0 });
+/// assert_eq!(segment_foot(coord! { x: 4.0, y: 3.0 }, a, b), (coord! { x: 4.0, y: 0.0 }, 4.0));
+/// assert_eq!(segment_foot(coord! { x: 13.0, y: 4.0 }, a, b), (b, 10.0));
+/// ```
+pub fn segment_foot(p: Coord, a: Coord, b: Coord) -> (Coord, f64) {
     let ab = b - a;
     let len2 = ab.x * ab.x + ab.y * ab.y;
     let t = if len2 > 0.0 {
@@ -21,8 +37,7 @@ pub fn point_segment_distance(p: Coord, a: Coord, b: Coord) -> f64 {
     } else {
         0.0
     };
-    let q = a + ab * t;
-    (p.x - q.x).planar_hypot(p.y - q.y)
+    (a + ab * t, t * len2.sqrt())
 }
 
 /// The length of the vector `(self, y)`: `x.hypot(y)` without its guards against overflow and

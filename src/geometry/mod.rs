@@ -15,7 +15,7 @@ pub mod simplify;
 
 pub use bearing::{bearing_of, deg_to_bearing, swath_direction, unit_vector};
 pub use bearing_range::{forbids_every_direction, BearingRange};
-pub use distance::{point_segment_distance, Extremes, PlanarHypot};
+pub use distance::{point_segment_distance, segment_foot, Extremes, PlanarHypot};
 pub use parallel_lines::{clip_segment, SweepFrame};
 pub use polygon_distance::polygons_within;
 pub use round::round_half_away;

@@ -31,7 +31,7 @@
 //! assert!(c.line(0, 1).is_some());
 //! ```
 
-use crate::geometry::{IndexedSegment, PlanarHypot};
+use crate::geometry::{segment_foot, IndexedSegment, PlanarHypot};
 use crate::headland::HeadlandPass;
 use crate::sort::SharedSort;
 use geo::{Coord, LineString};
@@ -56,18 +56,6 @@ const CORNER_HOP_WIDTHS: f64 = 1.5;
 
 /// One segment of a line, for the nearest-point search (`line` the graph's line).
 type Segment = IndexedSegment;
-
-/// The point of the segment nearest to `p`, and its distance from the segment's start.
-fn foot(seg: &Segment, p: Coord) -> (Coord, f64) {
-    let d = seg.b - seg.a;
-    let len2 = d.x * d.x + d.y * d.y;
-    let t = if len2 > 0.0 {
-        (((p - seg.a).x * d.x + (p - seg.a).y * d.y) / len2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    (seg.a + d * t, t * len2.sqrt())
-}
 
 /// A line of the graph: a pass's centre line with the distance along it at each point.
 #[derive(Debug, Clone)]
@@ -198,7 +186,7 @@ impl HeadlandGraph {
     /// The nearest point of any line to `p` within `radius`: (line, distance along it, point).
     fn nearest(&self, p: Coord, radius: f64) -> Option<(usize, f64, Coord)> {
         let seg = self.tree.nearest_neighbor(&[p.x, p.y])?;
-        let (foot, along) = foot(seg, p);
+        let (foot, along) = segment_foot(p, seg.a, seg.b);
         let d = (foot - p).x.planar_hypot((foot - p).y);
         (d <= radius).then(|| {
             let at = self.lines[seg.line].at[seg.index] + along;
@@ -266,7 +254,7 @@ impl HeadlandGraph {
                 if seg.line == line {
                     continue;
                 }
-                let (foot, along) = foot(seg, point);
+                let (foot, along) = segment_foot(point, seg.a, seg.b);
                 let d = (foot - point).x.planar_hypot((foot - point).y);
                 if d > reach && !neighbours(line, seg.line) {
                     continue;

@@ -36,7 +36,7 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
-use crate::geometry::{IndexedSegment, PlanarHypot};
+use crate::geometry::{segment_foot, IndexedSegment, PlanarHypot};
 use crate::sort::SharedSort;
 use geo::Coord;
 use rstar::{RTree, RTreeObject};
@@ -630,15 +630,8 @@ fn crossing(a: &Piece, b: &Piece) -> Option<(f64, f64)> {
 
 /// The foot of `p` on segment ab: (distance from a along it, distance of p from it).
 fn foot(a: Coord, b: Coord, p: Coord) -> (f64, f64) {
-    let d = b - a;
-    let len2 = d.x * d.x + d.y * d.y;
-    let t = if len2 > 0.0 {
-        (((p - a).x * d.x + (p - a).y * d.y) / len2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    let f = a + d * t;
-    (t * len2.sqrt(), distance(f, p))
+    let (f, along) = segment_foot(p, a, b);
+    (along, distance(f, p))
 }
 
 fn distance(a: Coord, b: Coord) -> f64 {
