@@ -145,7 +145,7 @@ pub fn cluster_swaths(swaths: &Swaths) -> Blocks {
 /// what the direction search needs to count turns.
 pub fn block_members(s: &[Swath]) -> Vec<Vec<usize>> {
     // Swaths are ordered by line; find where each line's run starts.
-    let mut runs: Vec<(usize, std::ops::Range<usize>)> = Vec::new();
+    let mut runs: Vec<(usize, std::ops::Range<usize>)> = Vec::with_capacity(s.len());
     let mut i = 0;
     while i < s.len() {
         let line = s[i].line_index;
@@ -156,8 +156,9 @@ pub fn block_members(s: &[Swath]) -> Vec<Vec<usize>> {
         runs.push((line, start..i));
     }
 
+    // Each swath's block first, then the blocks' lists at their sizes.
     let mut block_of: Vec<usize> = vec![usize::MAX; s.len()];
-    let mut members: Vec<Vec<usize>> = Vec::new();
+    let mut sizes: Vec<usize> = Vec::new();
     for (r, (line, range)) in runs.iter().enumerate() {
         let prev = r
             .checked_sub(1)
@@ -175,17 +176,22 @@ pub fn block_members(s: &[Swath]) -> Vec<Vec<usize>> {
                 let only = back.next() == Some(j) && back.next().is_none();
                 only.then_some(k)
             });
-            match continues {
-                Some(k) => {
-                    let b = block_of[k];
+            match continues.and_then(|k| block_of.get(k).copied()) {
+                Some(b) if b < sizes.len() => {
                     block_of[j] = b;
-                    members[b].push(j);
+                    sizes[b] += 1;
                 }
-                None => {
-                    block_of[j] = members.len();
-                    members.push(vec![j]);
+                _ => {
+                    block_of[j] = sizes.len();
+                    sizes.push(1);
                 }
             }
+        }
+    }
+    let mut members: Vec<Vec<usize>> = sizes.into_iter().map(Vec::with_capacity).collect();
+    for (j, &b) in block_of.iter().enumerate() {
+        if let Some(m) = members.get_mut(b) {
+            m.push(j);
         }
     }
     members

@@ -124,10 +124,11 @@ pub fn turn_length(spacing: f64, radius: f64) -> f64 {
     }
 }
 
-/// [`turn_length`] at one turning radius, remembering the last spacing: the turns of a block
-/// are mostly between neighbouring swaths, one spacing apart, and the length is an arc cosine
-/// (a routine in software in WebAssembly) that planning asks for every turn of every block at
-/// every direction tried. The same numbers as [`turn_length`].
+/// [`turn_length`] at one turning radius, remembering the last few spacings: the turns of a
+/// block are mostly between neighbouring swaths, one spacing apart (a snake that skips swaths
+/// alternates between two or three), and the length is an arc cosine (a routine in software in
+/// WebAssembly) that planning asks for every turn of every block at every direction tried. The
+/// same numbers as [`turn_length`].
 ///
 /// ```
 /// use furrow::objective::{turn_length, TurnLengths};
@@ -136,31 +137,42 @@ pub fn turn_length(spacing: f64, radius: f64) -> f64 {
 /// assert_eq!(lengths.of(6.0), turn_length(6.0, 8.0));
 /// assert_eq!(lengths.of(-6.0), turn_length(6.0, 8.0));
 /// assert_eq!(lengths.of(20.0), turn_length(20.0, 8.0));
+/// assert_eq!(lengths.of(12.0), turn_length(12.0, 8.0));
+/// assert_eq!(lengths.of(6.0), turn_length(6.0, 8.0));
 /// ```
 #[derive(Debug, Clone, Copy)]
 pub struct TurnLengths {
     radius: f64,
-    last: Option<(f64, f64)>,
+    /// Spacings (absolute) and their lengths, the most recent at `next - 1`; NaN where empty.
+    recent: [(f64, f64); TURN_LENGTHS_KEPT],
+    next: usize,
 }
+
+/// How many spacings [`TurnLengths`] remembers.
+const TURN_LENGTHS_KEPT: usize = 4;
 
 impl TurnLengths {
     /// Turn lengths at this turning radius.
     pub fn new(radius: f64) -> Self {
-        TurnLengths { radius, last: None }
+        TurnLengths {
+            radius,
+            recent: [(f64::NAN, f64::NAN); TURN_LENGTHS_KEPT],
+            next: 0,
+        }
     }
 
     /// [`turn_length`] of `spacing` (either sign) at the radius.
     #[inline]
     pub fn of(&mut self, spacing: f64) -> f64 {
         let d = spacing.abs();
-        match self.last {
-            Some((at, length)) if at == d => length,
-            _ => {
-                let length = turn_length(d, self.radius);
-                self.last = Some((d, length));
-                length
-            }
+        // NaN is equal to nothing: an empty place never matches.
+        if let Some(&(_, length)) = self.recent.iter().find(|(at, _)| *at == d) {
+            return length;
         }
+        let length = turn_length(d, self.radius);
+        self.recent[self.next] = (d, length);
+        self.next = (self.next + 1) % TURN_LENGTHS_KEPT;
+        length
     }
 }
 

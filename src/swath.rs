@@ -217,7 +217,8 @@ pub fn line_offsets(lo: f64, hi: f64, width: f64) -> Vec<f64> {
         return vec![(lo + hi) / 2.0];
     }
     let full = (extent / width + LEFTOVER_TOLERANCE).floor() as usize;
-    let mut offsets: Vec<f64> = (0..full).map(|i| lo + (i as f64 + 0.5) * width).collect();
+    let mut offsets: Vec<f64> = Vec::with_capacity(full + 1);
+    offsets.extend((0..full).map(|i| lo + (i as f64 + 0.5) * width));
     if extent - full as f64 * width > LEFTOVER_TOLERANCE * width {
         offsets.push(hi - width / 2.0);
     }
@@ -346,6 +347,8 @@ pub fn generate_with(area: &MultiPolygon, settings: &SwathSettings) -> Result<Sw
             LinePlacement::Aligned { across } => aligned_offsets(lo, hi, width, across),
         };
         let offsets: Vec<f64> = placed.iter().map(|l| l.0).collect();
+        // Most lines give one swath.
+        swaths.reserve(offsets.len());
         let mut merged: Vec<(f64, f64)> = Vec::new();
         frame.clip_each(area, &offsets, |line_index, line| {
             let Some(&(across, leftover)) = placed.get(line_index) else {

@@ -219,7 +219,10 @@ pub fn split_prepared(area: &PreparedArea, frame: &SweepFrame) -> Vec<Trapezoid>
     // Each ring cut at the slab lines into chains running from one line to the next.
     let mut chains: Vec<Vec<Vec<(f64, f64)>>> = vec![Vec::new(); lines.len() - 1];
     let mut emit = |chain: &mut Vec<(f64, f64)>, last: (f64, f64)| {
-        let mut done = std::mem::replace(chain, vec![last]);
+        // A chain between two slab lines is mostly a piece of one edge: two points.
+        let mut next = Vec::with_capacity(4);
+        next.push(last);
+        let mut done = std::mem::replace(chain, next);
         let (Some(&first), Some(&end)) = (done.first(), done.last()) else {
             return;
         };

@@ -128,7 +128,12 @@ impl SweepFrame {
         offsets: &[f64],
         mut each: impl FnMut(usize, &[(f64, f64)]),
     ) {
-        let mut edges = Vec::new();
+        let vertices: usize = polygons
+            .0
+            .iter()
+            .map(|p| p.exterior().0.len() + p.interiors().iter().map(|r| r.0.len()).sum::<usize>())
+            .sum();
+        let mut edges = Vec::with_capacity(vertices);
         for p in polygons.0.iter() {
             for ring in std::iter::once(p.exterior()).chain(p.interiors().iter()) {
                 for w in ring.0.windows(2) {

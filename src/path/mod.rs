@@ -101,9 +101,21 @@ pub struct PathSegment {
 impl PathSegment {
     /// A segment of these pieces (its line drawn from them).
     pub fn new(kind: SegmentKind, pieces: Vec<Segment>, step: Option<usize>) -> Self {
+        Self::new_visiting(kind, pieces, step, |_| {})
+    }
+
+    /// [`PathSegment::new`], showing `visit` each point of the pieces' chords as the line is
+    /// drawn (those the line leaves out for lying on the point before too).
+    fn new_visiting(
+        kind: SegmentKind,
+        pieces: Vec<Segment>,
+        step: Option<usize>,
+        mut visit: impl FnMut(Coord),
+    ) -> Self {
         let mut pts: Vec<Coord> = Vec::new();
         for p in &pieces {
             for c in turn::chord_points(p) {
+                visit(c);
                 if pts
                     .last()
                     .is_none_or(|q: &Coord| (q.x - c.x).planar_hypot(q.y - c.y) > 1e-9)
@@ -313,12 +325,9 @@ fn swath_turn(from: Pose, to: Pose, v: &Vehicle, area: Option<&Area>) -> Option<
     };
     let (s, c) = from.heading.sin_cos();
     let mut reach: f64 = 0.0;
-    for p in &t.segments {
-        for q in turn::chord_points(p) {
-            reach = reach.max((q.x - from.x) * c + (q.y - from.y) * s);
-        }
-    }
-    let mut seg = PathSegment::new(SegmentKind::Turn, t.segments, None);
+    let mut seg = PathSegment::new_visiting(SegmentKind::Turn, t.segments, None, |q| {
+        reach = reach.max((q.x - from.x) * c + (q.y - from.y) * s);
+    });
     seg.turn = Some(TurnReport {
         form: t.form,
         inside: t.inside,

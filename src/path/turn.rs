@@ -34,7 +34,7 @@ use super::continuous::{cc_dubins_all, cc_turn, cc_u_turn, CcSettings};
 use super::curve::{self, Gear, Pose, Segment};
 use super::dubins::dubins_all;
 use super::reeds_shepp::reeds_shepp_all;
-use crate::geometry::{Extremes, IndexedSegment};
+use crate::geometry::{point_segment_distance, Extremes, IndexedSegment, PlanarHypot};
 use crate::sort::SharedSort;
 use geo::{Coord, Line, LineString, Polygon};
 use rstar::{RTree, AABB};
@@ -444,10 +444,45 @@ impl Area {
             return true;
         }
         let mut previous: Option<Coord> = None;
+        let mut beside: Vec<Line> = Vec::with_capacity(near.len());
         for s in segments {
-            for p in chord_points(s) {
+            let n = chord_count(s);
+            let poses = s.poses();
+            let point = |i: usize| {
+                let p = poses.at(chord_distance(s, i, n));
+                Coord { x: p.x, y: p.y }
+            };
+            // The chords of an arc lie in a ring: between its circle and the circle one chord
+            // tolerance inside. Edges that do not reach into the ring cross none of them, and
+            // an arc that no edge reaches into is inside without a chord drawn. (The chord from
+            // the run's previous point onto the arc is checked against every edge.)
+            let edges: &[Line] = match arc_circle(s) {
+                Some((centre, radius)) => {
+                    beside.clear();
+                    beside.extend(
+                        near.iter()
+                            .filter(|e| reaches_ring(e, centre, radius - CHORD_TOLERANCE_M, radius))
+                            .copied(),
+                    );
+                    if beside.is_empty() {
+                        let first = point(0);
+                        if let Some(a) = previous {
+                            if crosses_any(&near, a, first) {
+                                return false;
+                            }
+                        }
+                        previous = Some(point(n));
+                        continue;
+                    }
+                    &beside
+                }
+                None => &near,
+            };
+            for i in 0..=n {
+                let p = point(i);
                 if let Some(a) = previous {
-                    if crosses_any(&near, a, p) {
+                    let against = if i == 0 { &near[..] } else { edges };
+                    if crosses_any(against, a, p) {
                         return false;
                     }
                 }
@@ -456,6 +491,46 @@ impl Area {
         }
         true
     }
+}
+
+/// Arcs of a radius up to this (metres) are checked against the edges near their ring; flatter
+/// ones chord by chord.
+const RING_CHECK_MAX_RADIUS_M: f64 = 1e5;
+
+/// How far (metres) beyond a ring an edge may be found by [`reaches_ring`] and still be taken:
+/// far above the rounding of coordinates of a field, far below the chord tolerance.
+const RING_MARGIN_M: f64 = 1e-6;
+
+/// The centre and radius of the circle a circular arc runs on; `None` for lines, clothoids and
+/// arcs flatter than [`RING_CHECK_MAX_RADIUS_M`].
+fn arc_circle(s: &Segment) -> Option<(Coord, f64)> {
+    if s.sharpness != 0.0 || s.curvature == 0.0 || !s.curvature.is_finite() {
+        return None;
+    }
+    let r = 1.0 / s.curvature;
+    if r.abs() > RING_CHECK_MAX_RADIUS_M {
+        return None;
+    }
+    // The positions are start + r (sin θ − sin θ₀, −(cos θ − cos θ₀)) (see curve::Poses::at).
+    let (sin, cos) = s.start.heading.sin_cos();
+    Some((
+        Coord {
+            x: s.start.x - r * sin,
+            y: s.start.y + r * cos,
+        },
+        r.abs(),
+    ))
+}
+
+/// Whether the edge comes within [`RING_MARGIN_M`] of the ring around `centre` between radii
+/// `inner` and `outer`: not if it passes outside the outer circle, nor if it lies wholly inside
+/// the inner one.
+fn reaches_ring(edge: &Line, centre: Coord, inner: f64, outer: f64) -> bool {
+    let nearest = point_segment_distance(centre, edge.start, edge.end);
+    let farthest = (edge.start.x - centre.x)
+        .planar_hypot(edge.start.y - centre.y)
+        .greater((edge.end.x - centre.x).planar_hypot(edge.end.y - centre.y));
+    nearest <= outer + RING_MARGIN_M && farthest >= inner - RING_MARGIN_M
 }
 
 /// Whether the chord from `a` to `b` crosses one of `edges`.
@@ -479,22 +554,32 @@ pub fn chord_points(s: &Segment) -> impl Iterator<Item = Coord> + '_ {
 
 /// The poses (with the steering curvature there) at [`chord_points`].
 pub fn chord_poses(s: &Segment) -> impl Iterator<Item = (Pose, f64)> + '_ {
+    let n = chord_count(s);
+    let poses = s.poses();
+    (0..=n).map(move |i| {
+        let at = chord_distance(s, i, n);
+        (poses.at(at), s.curvature_at(at))
+    })
+}
+
+/// The number of chords [`chord_points`] divides a segment into.
+fn chord_count(s: &Segment) -> usize {
     let k = s.max_curvature();
     let step = if k > 1e-12 {
         (8.0 * CHORD_TOLERANCE_M / k).sqrt()
     } else {
         f64::INFINITY
     };
-    let n = if step.is_finite() {
+    if step.is_finite() {
         ((s.length / step).ceil() as usize).clamp(1, 100_000)
     } else {
         1
-    };
-    let poses = s.poses();
-    (0..=n).map(move |i| {
-        let at = s.length * i as f64 / n as f64;
-        (poses.at(at), s.curvature_at(at))
-    })
+    }
+}
+
+/// How far along the segment the `i`th of the points of `n` chords lies, metres.
+fn chord_distance(s: &Segment, i: usize, n: usize) -> f64 {
+    s.length * i as f64 / n as f64
 }
 
 /// Whether two closed segments meet.
@@ -525,7 +610,39 @@ fn segments_intersect(a: &Line, b: &Line) -> bool {
 mod tests {
     use super::*;
     use geo::polygon;
+    use proptest::prelude::*;
     use std::f64::consts::PI;
+
+    /// [`Area::contains`] without the ring check: every chord against every edge.
+    fn contains_chord_by_chord(area: &Area, segments: &[Segment]) -> bool {
+        let edges: Vec<Line> = area.edges.iter().map(Edge::as_line).collect();
+        let points: Vec<Coord> = segments.iter().flat_map(chord_points).collect();
+        !points.windows(2).any(|w| crosses_any(&edges, w[0], w[1]))
+    }
+
+    proptest! {
+        #![proptest_config(crate::seeded::config(2048))]
+        /// Skipping the edges that do not reach into an arc's ring of chords gives the same
+        /// answer as checking every chord against every edge: turns of every form, forward and
+        /// reversing, between poses near a field's edge and an obstacle.
+        #[test]
+        fn the_ring_check_is_the_chord_by_chord_check(
+            x in -30.0..30.0f64, y in -30.0..30.0f64, heading in -PI..PI,
+            dx in -25.0..25.0f64, dy in -25.0..25.0f64, turn in -PI..PI,
+            radius in 2.0..12.0f64, reverse: bool, edge in 5.0..40.0f64,
+        ) {
+            let area = Area::new(
+                &polygon![(x: -60., y: -60.), (x: edge, y: -60.), (x: edge, y: 60.), (x: -60., y: 60.)],
+                &[&polygon![(x: -20., y: 10.), (x: -12., y: 10.), (x: -12., y: 16.), (x: -20., y: 16.)]],
+            );
+            let v = Vehicle { turn_radius: radius, reverse, ..Vehicle::default() };
+            let from = Pose::new(x, y, heading);
+            let to = Pose::new(x + dx, y + dy, heading + turn);
+            for t in v.candidates(from, to) {
+                prop_assert_eq!(area.contains(&t.segments), contains_chord_by_chord(&area, &t.segments));
+            }
+        }
+    }
 
     #[test]
     fn a_loop_turn_for_close_swaths_and_three_points_when_reversing() {

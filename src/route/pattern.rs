@@ -273,14 +273,16 @@ pub fn block_turning_m(
     // every block of every direction a decomposition tries.
     let mut forward: Vec<usize> = Vec::with_capacity(ids.len());
     let mut mirrored: Vec<usize> = Vec::with_capacity(ids.len());
+    let mut lengths = TurnLengths::new(turn_radius);
     let mut least = f64::INFINITY;
     for order in orders {
         sequences(ids, order, &mut forward, &mut mirrored);
         let mut total = 0.0;
         for sequence in [&forward, &mirrored] {
-            for first_reversed in [false, true] {
-                total += turning_of(sequence, first_reversed, swaths, turn_radius);
-            }
+            // Driven either way first: the same turns, the staggers at the other ends.
+            let [ahead, reversed] = turning_both_ways(sequence, swaths, &mut lengths);
+            total += ahead;
+            total += reversed;
         }
         let mean = total / 4.0;
         if mean < least {
@@ -329,6 +331,22 @@ pub fn turning_of(sequence: &[usize], first_reversed: bool, swaths: &[Swath], ra
 /// and the stagger between the ends.
 pub fn turn_between(a: &Swath, a_reversed: bool, b: &Swath, radius: f64) -> f64 {
     turn_length(a.across - b.across, radius) + stagger(a, a_reversed, b)
+}
+
+/// [`turning_of`] the sequence with its first swath driven along the swath direction and
+/// against it, in one pass (the same numbers).
+fn turning_both_ways(sequence: &[usize], swaths: &[Swath], lengths: &mut TurnLengths) -> [f64; 2] {
+    let mut reversed = false;
+    let mut totals = [0.0; 2];
+    for w in sequence.windows(2) {
+        if let (Some(a), Some(b)) = (swaths.get(w[0]), swaths.get(w[1])) {
+            let turn = lengths.of(a.across - b.across);
+            totals[0] += turn + stagger(a, reversed, b);
+            totals[1] += turn + stagger(a, !reversed, b);
+        }
+        reversed = !reversed;
+    }
+    totals
 }
 
 /// How far apart the ends of `a` and `b` lie along the swaths at the end the turn from `a`
