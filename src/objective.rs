@@ -409,6 +409,17 @@ pub fn measure(swaths: &[Swath], width: f64, area: &MultiPolygon, m: &Machine) -
 /// [`measure`] without the exact coverage, for estimates made many times over: the covered
 /// area is taken as the strips' area, at most the area (`area_m2`, square metres).
 pub fn measure_turns(swaths: &[Swath], width: f64, area_m2: f64, m: &Machine) -> SwathStats {
+    measure_turns_in(swaths, &block_members(swaths), width, area_m2, m)
+}
+
+/// [`measure_turns`] of swaths whose blocks (their [`block_members`]) the caller has found.
+pub fn measure_turns_in(
+    swaths: &[Swath],
+    blocks: &[Vec<usize>],
+    width: f64,
+    area_m2: f64,
+    m: &Machine,
+) -> SwathStats {
     let mut stats = SwathStats {
         swath_count: swaths.len(),
         swath_length_m: swaths.iter().map(Swath::length).sum(),
@@ -416,10 +427,9 @@ pub fn measure_turns(swaths: &[Swath], width: f64, area_m2: f64, m: &Machine) ->
         ..SwathStats::default()
     };
     stats.strip_area_m2 = stats.swath_length_m * width;
-    let blocks = block_members(swaths);
     let mut previous_corners: Option<[Coord; 4]> = None;
     let mut lengths = TurnLengths::new(m.turn_radius);
-    for block in &blocks {
+    for block in blocks {
         for (k, pair) in block.windows(2).enumerate() {
             let (a, b) = (&swaths[pair[0]], &swaths[pair[1]]);
             // Boustrophedon: the first swath driven forward, so turns alternate ends.

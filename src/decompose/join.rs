@@ -15,7 +15,9 @@ use super::BlockArea;
 use crate::decompose::block_members;
 use crate::error::PlanError;
 use crate::geometry::PlanarSimplify;
-use crate::objective::{measure, measure_turns, turn_length, Objective, OperationTime, SwathStats};
+use crate::objective::{
+    measure, measure_turns_in, turn_length, Objective, OperationTime, SwathStats,
+};
 use crate::prohibited::constraints_in;
 use crate::route::pattern::block_turning_m;
 use crate::sort::SharedSort;
@@ -31,8 +33,9 @@ pub fn block_time(
     s: &SplitMergeSettings,
 ) -> Result<f64, PlanError> {
     let swaths = block_swaths(area, bearing, s)?;
-    let stats = measure_turns(&swaths, s.width, area.unsigned_area(), &s.machine);
-    let stats = in_pattern(stats, &swaths, s);
+    let blocks = block_members(&swaths);
+    let stats = measure_turns_in(&swaths, &blocks, s.width, area.unsigned_area(), &s.machine);
+    let stats = in_pattern(stats, &swaths, &blocks, s);
     Ok(OperationTime.cost(&stats, &s.machine) + entry_time(&stats, s))
 }
 
@@ -45,18 +48,23 @@ pub fn exact_block_time(
 ) -> Result<f64, PlanError> {
     let swaths = block_swaths(area, bearing, s)?;
     let stats = measure(&swaths, s.width, area, &s.machine);
-    let stats = in_pattern(stats, &swaths, s);
+    let stats = in_pattern(stats, &swaths, &block_members(&swaths), s);
     Ok(OperationTime.cost(&stats, &s.machine) + entry_time(&stats, s))
 }
 
 /// `stats` with the turns inside each block (cluster of swaths) counted in the cheapest of the
 /// route's orders ([`block_turning_m`]) instead of boustrophedon: snakes that skip swaths turn
 /// in U-turns where boustrophedon needs loops, and a block is worth what the route makes of it.
-fn in_pattern(mut stats: SwathStats, swaths: &[Swath], s: &SplitMergeSettings) -> SwathStats {
+fn in_pattern(
+    mut stats: SwathStats,
+    swaths: &[Swath],
+    blocks: &[Vec<usize>],
+    s: &SplitMergeSettings,
+) -> SwathStats {
     if s.orders.is_empty() {
         return stats;
     }
-    let within: f64 = block_members(swaths)
+    let within: f64 = blocks
         .iter()
         .map(|ids| block_turning_m(ids, swaths, s.orders, s.machine.turn_radius))
         .sum();
@@ -502,8 +510,9 @@ mod tests {
         );
         let swaths = block_swaths(&block, 0.0, &s).unwrap();
         let ids: Vec<usize> = (0..swaths.len()).collect();
-        let stats = measure_turns(&swaths, 3.0, block.unsigned_area(), &s.machine);
-        let patterned = in_pattern(stats, &swaths, &with_orders);
+        let stats =
+            crate::objective::measure_turns(&swaths, 3.0, block.unsigned_area(), &s.machine);
+        let patterned = in_pattern(stats, &swaths, &block_members(&swaths), &with_orders);
         let expected = block_turning_m(&ids, &swaths, &orders, 6.0);
         assert!((patterned.turning_distance_m - expected).abs() < 1e-9);
     }

@@ -91,23 +91,31 @@ impl SwathOrder {
     /// The positions (0 = the first swath across the block) in working order: a permutation of
     /// `0..n`.
     pub fn positions(&self, n: usize) -> Vec<usize> {
+        let mut out = Vec::with_capacity(n);
+        self.positions_into(n, &mut out);
+        out
+    }
+
+    /// [`SwathOrder::positions`] into `out` (cleared first).
+    pub fn positions_into(&self, n: usize, out: &mut Vec<usize>) {
+        out.clear();
         match self {
-            SwathOrder::Boustrophedon => (0..n).collect(),
+            SwathOrder::Boustrophedon => out.extend(0..n),
             SwathOrder::Snake { skip } => {
                 let step = skip.saturating_add(1).max(1);
                 let sets = step.min(n.max(1));
                 // Sets taken from the two sides in turn: 0, k, 1, k - 1, ...
                 let (mut lo, mut hi) = (0usize, sets - 1);
-                let mut out = Vec::with_capacity(n);
                 let mut outward = true;
                 let mut from_low = true;
                 while lo <= hi {
                     let set = if from_low { lo } else { hi };
-                    let mut members: Vec<usize> = (set..n).step_by(step).collect();
-                    if !outward {
-                        members.reverse();
+                    let members = (set..n).step_by(step);
+                    if outward {
+                        out.extend(members);
+                    } else {
+                        out.extend(members.rev());
                     }
-                    out.extend(members);
                     outward = !outward;
                     if from_low {
                         lo += 1;
@@ -118,11 +126,9 @@ impl SwathOrder {
                     }
                     from_low = !from_low;
                 }
-                out
             }
             SwathOrder::Spiral { size } => {
                 let size = (*size).max(1);
-                let mut out = Vec::with_capacity(n);
                 let mut start = 0;
                 while start < n {
                     let m = size.min(n - start);
@@ -143,21 +149,19 @@ impl SwathOrder {
                     }
                     start += m;
                 }
-                out
             }
             SwathOrder::Custom(order) => {
                 let m = order.len();
                 if m == 0 {
-                    return (0..n).collect();
+                    out.extend(0..n);
+                    return;
                 }
-                let mut out = Vec::with_capacity(n);
                 let mut start = 0;
                 while start < n {
                     let left = m.min(n - start);
                     out.extend(order.iter().filter(|&&p| p < left).map(|&p| start + p));
                     start += m;
                 }
-                out
             }
         }
     }
@@ -219,8 +223,8 @@ pub fn ways(
     order: &SwathOrder,
     turn_radius: f64,
 ) -> Vec<BlockWay> {
-    let (mut forward, mut mirrored) = (Vec::new(), Vec::new());
-    sequences(ids, order, &mut forward, &mut mirrored);
+    let (mut positions, mut forward, mut mirrored) = (Vec::new(), Vec::new(), Vec::new());
+    sequences(ids, order, [&mut positions, &mut forward, &mut mirrored]);
     let mut out = Vec::with_capacity(4);
     for sequence in [forward, mirrored] {
         for first_reversed in [false, true] {
@@ -271,12 +275,13 @@ pub fn block_turning_m(
     };
     // The mean over the four ways of `ways`, without building them: planning asks this for
     // every block of every direction a decomposition tries.
+    let mut positions: Vec<usize> = Vec::with_capacity(ids.len());
     let mut forward: Vec<usize> = Vec::with_capacity(ids.len());
     let mut mirrored: Vec<usize> = Vec::with_capacity(ids.len());
     let mut lengths = TurnLengths::new(turn_radius);
     let mut least = f64::INFINITY;
     for order in orders {
-        sequences(ids, order, &mut forward, &mut mirrored);
+        sequences(ids, order, [&mut positions, &mut forward, &mut mirrored]);
         let mut total = 0.0;
         for sequence in [&forward, &mirrored] {
             // Driven either way first: the same turns, the staggers at the other ends.
@@ -293,15 +298,15 @@ pub fn block_turning_m(
 }
 
 /// The swaths of a block (`ids`, in line order) in `order` from its first line across
-/// (`forward`) and from its last (`mirrored`), into the two lists (cleared first).
+/// (`forward`) and from its last (`mirrored`), into the two lists (cleared first; `positions`
+/// is room for the order's positions).
 fn sequences(
     ids: &[usize],
     order: &SwathOrder,
-    forward: &mut Vec<usize>,
-    mirrored: &mut Vec<usize>,
+    [positions, forward, mirrored]: [&mut Vec<usize>; 3],
 ) {
     let n = ids.len();
-    let positions = order.positions(n);
+    order.positions_into(n, positions);
     forward.clear();
     forward.extend(positions.iter().filter_map(|&p| ids.get(p).copied()));
     mirrored.clear();
