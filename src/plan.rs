@@ -36,7 +36,8 @@ use crate::path::sample::{sample, Samples};
 use crate::path::turn::Area as DrivingArea;
 use crate::path::{build_path, Path};
 use crate::prohibited::{forbidding, split};
-use crate::route::{pattern::candidates, plan_route, Route, RouteSettings};
+use crate::route::headland_graph::HeadlandGraph;
+use crate::route::{pattern::candidates, plan_route, plan_route_on, Route, RouteSettings};
 use crate::swath::{generate_with, lifts, LinePlacement, Swath, SwathArea, SwathSettings, Swaths};
 use geo::{Area, BooleanOps, BoundingRect, Centroid};
 use web_time::Instant;
@@ -322,6 +323,9 @@ pub(crate) fn plan_stages(
         None
     };
     times.lap(&mut clock, |t| &mut t.decomposition);
+    // The ways along the headland, for every candidate that adds no passes of its own.
+    let graph = HeadlandGraph::new(&headlands.passes, width);
+    times.lap(&mut clock, |t| &mut t.route);
     let prepared = Prepared {
         mode,
         bearing,
@@ -329,6 +333,7 @@ pub(crate) fn plan_stages(
         search_cost,
         objective: objective.as_ref(),
         headlands,
+        graph,
         single,
         area: {
             let obstacles: Vec<&geo::Polygon> =
@@ -455,6 +460,8 @@ struct Prepared<'a> {
     search_cost: Option<f64>,
     objective: &'a dyn Objective,
     headlands: Headlands,
+    /// The headland graph of the passes in `headlands`.
+    graph: HeadlandGraph,
     /// The swaths at the field's direction, when a single-direction decomposition is planned.
     single: Option<SingleDirection>,
     /// Where turns must stay (the field less its obstacles): the same for every candidate.
@@ -973,6 +980,14 @@ fn work(
     });
     let route = match &earlier {
         Some((route, _)) => route.clone(),
+        // The passes of `prep` alone: their graph is built.
+        None if headlands.passes.len() == prep.headlands.passes.len() => plan_route_on(
+            &prep.graph,
+            &swaths,
+            &blocks,
+            &headlands.passes,
+            &route_settings(options, field),
+        ),
         None => plan_route(
             &swaths,
             &blocks,

@@ -207,8 +207,26 @@ pub fn plan_route(
     passes: &[HeadlandPass],
     settings: &RouteSettings,
 ) -> Route {
+    plan_route_on(
+        &HeadlandGraph::new(passes, settings.width),
+        swaths,
+        blocks,
+        passes,
+        settings,
+    )
+}
+
+/// [`plan_route`] along a headland graph built by the caller, `HeadlandGraph::new(passes,
+/// settings.width)`: plans that differ only in their swaths share it (the same route as
+/// [`plan_route`]'s).
+pub fn plan_route_on(
+    graph: &HeadlandGraph,
+    swaths: &Swaths,
+    blocks: &Blocks,
+    passes: &[HeadlandPass],
+    settings: &RouteSettings,
+) -> Route {
     let s = &swaths.swaths;
-    let graph = HeadlandGraph::new(passes, settings.width);
     let mut route = Route::default();
 
     // Headland first: the passes from the entrance, and the blocks from where they end.
@@ -229,7 +247,7 @@ pub fn plan_route(
         &block_ways,
         s,
         position,
-        &graph,
+        graph,
         &unlimited,
         false,
         finish_on_headland,
@@ -243,7 +261,7 @@ pub fn plan_route(
             &block_ways,
             s,
             position,
-            &graph,
+            graph,
             &unlimited,
             true,
             finish_on_headland,
