@@ -13,8 +13,8 @@
 
 use super::BlockArea;
 use crate::field::ProhibitedRegion;
-use crate::geometry::PlanarHypot;
 use crate::geometry::{bearing_of, clip_segment, swath_direction, BearingRange};
+use crate::geometry::{Extremes, PlanarHypot};
 use crate::headland::{HeadlandPass, PassAround};
 use geo::{Area, BooleanOps, BoundingRect, Coord, Intersects, LineString, MultiPolygon, Polygon};
 use std::f64::consts::PI;
@@ -71,7 +71,10 @@ fn angle_between(a: f64, b: f64) -> f64 {
 /// The stretches of border the blocks share, each straight, between pairs of blocks that share
 /// at least `min_length` metres in all.
 pub fn borders(blocks: &[BlockArea], min_length: f64) -> Vec<Border> {
-    let edges: Vec<Vec<(Coord, Coord)>> = blocks
+    // Each edge with its box grown by twice the tolerance: edges that share a stretch of border
+    // lie within the tolerance of each other, so their grown boxes meet.
+    let reach = 2.0 * ON_EDGE_M;
+    let edges: Vec<Vec<(Coord, Coord, [f64; 4])>> = blocks
         .iter()
         .map(|b| {
             b.area
@@ -79,29 +82,56 @@ pub fn borders(blocks: &[BlockArea], min_length: f64) -> Vec<Border> {
                 .iter()
                 .flat_map(|p| std::iter::once(p.exterior()).chain(p.interiors()))
                 .flat_map(|r| r.lines().map(|l| (l.start, l.end)))
+                .map(|(a, b)| {
+                    let grown = [
+                        a.x.lesser(b.x) - reach,
+                        a.y.lesser(b.y) - reach,
+                        a.x.greater(b.x) + reach,
+                        a.y.greater(b.y) + reach,
+                    ];
+                    (a, b, grown)
+                })
                 .collect()
         })
         .collect();
+    let apart =
+        |x: &[f64; 4], y: &[f64; 4]| x[0] > y[2] || y[0] > x[2] || x[1] > y[3] || y[1] > x[3];
     let boxes: Vec<_> = blocks.iter().map(|b| b.area.bounding_rect()).collect();
     let mut out = Vec::new();
+    // The edges of each of a pair of blocks that reach into the other's box, in ring order.
+    let (mut near_i, mut near_j) = (Vec::new(), Vec::new());
+    let within = |edges: &[(Coord, Coord, [f64; 4])], other: geo::Rect, near: &mut Vec<_>| {
+        let grown = [
+            other.min().x - reach,
+            other.min().y - reach,
+            other.max().x + reach,
+            other.max().y + reach,
+        ];
+        near.clear();
+        near.extend(edges.iter().filter(|e| !apart(&e.2, &grown)).copied());
+    };
     for j in 0..blocks.len() {
         for i in 0..j {
-            let near = match (boxes[i], boxes[j]) {
-                (Some(a), Some(b)) => a.intersects(&b),
-                _ => false,
+            let (Some(box_i), Some(box_j)) = (boxes[i], boxes[j]) else {
+                continue;
             };
-            if !near {
+            if !box_i.intersects(&box_j) {
                 continue;
             }
+            within(&edges[i], box_j, &mut near_i);
+            within(&edges[j], box_i, &mut near_j);
             let first = out.len();
-            for &(a, b) in &edges[j] {
+            for &(a, b, a_box) in &near_j {
                 let d = b - a;
                 let len = d.x.planar_hypot(d.y);
                 if len < ON_EDGE_M {
                     continue;
                 }
                 let u = d / len;
-                for &(p, q) in &edges[i] {
+                for &(p, q, p_box) in &near_i {
+                    if apart(&a_box, &p_box) {
+                        continue;
+                    }
                     // Collinear: both ends of the other edge on this edge's line.
                     let off = |x: Coord| ((x - a).x * u.y - (x - a).y * u.x).abs();
                     if off(p) > ON_EDGE_M || off(q) > ON_EDGE_M {
@@ -275,6 +305,123 @@ mod tests {
     use crate::geometry::BearingRange;
     use geo::polygon;
     use std::f64::consts::FRAC_PI_2;
+
+    /// [`borders`] without the boxes: every edge of one block against every edge of the other.
+    fn borders_edge_by_edge(blocks: &[BlockArea], min_length: f64) -> Vec<Border> {
+        let edges: Vec<Vec<(Coord, Coord)>> = blocks
+            .iter()
+            .map(|b| {
+                b.area
+                    .0
+                    .iter()
+                    .flat_map(|p| std::iter::once(p.exterior()).chain(p.interiors()))
+                    .flat_map(|r| r.lines().map(|l| (l.start, l.end)))
+                    .collect()
+            })
+            .collect();
+        let mut out = Vec::new();
+        for j in 0..blocks.len() {
+            for i in 0..j {
+                let first = out.len();
+                for &(a, b) in &edges[j] {
+                    let d = b - a;
+                    let len = d.x.planar_hypot(d.y);
+                    if len < ON_EDGE_M {
+                        continue;
+                    }
+                    let u = d / len;
+                    for &(p, q) in &edges[i] {
+                        let off = |x: Coord| ((x - a).x * u.y - (x - a).y * u.x).abs();
+                        if off(p) > ON_EDGE_M || off(q) > ON_EDGE_M {
+                            continue;
+                        }
+                        let t = |x: Coord| (x - a).x * u.x + (x - a).y * u.y;
+                        let (t0, t1) = (t(p).min(t(q)).max(0.0), t(p).max(t(q)).min(len));
+                        if t1 - t0 >= ON_EDGE_M {
+                            out.push(Border {
+                                first: i,
+                                second: j,
+                                from: a + u * t0,
+                                to: a + u * t1,
+                            });
+                        }
+                    }
+                }
+                let shared: f64 = out[first..].iter().map(Border::length).sum();
+                if shared < min_length {
+                    out.truncate(first);
+                }
+            }
+        }
+        out
+    }
+
+    #[test]
+    fn the_boxes_find_the_borders_every_edge_pair_finds() {
+        use crate::decompose::cells::MergeRule;
+        use crate::decompose::split_merge::{cells_at, Criterion, SplitMergeSettings};
+        use crate::direction::SearchMethod;
+        use crate::objective::Machine;
+        // A field with a bay and two obstacles, its corners rounded as headlands leave them,
+        // cut into cells at many directions: borders along slab lines and along oblique edges.
+        let mut exterior: Vec<(f64, f64)> = vec![(0., 0.), (300., 0.), (300., 200.), (180., 200.)];
+        for k in 0..=12 {
+            let a = std::f64::consts::PI * k as f64 / 12.0;
+            exterior.push((150.0 - 30.0 * a.cos(), 200.0 - 60.0 * a.sin()));
+        }
+        exterior.extend([(120., 200.), (0., 200.)]);
+        let holes = vec![
+            LineString::from(vec![(50., 50.), (90., 40.), (80., 90.), (50., 50.)]),
+            LineString::from(vec![
+                (200., 60.),
+                (240., 60.),
+                (240., 120.),
+                (200., 120.),
+                (200., 60.),
+            ]),
+        ];
+        let field = MultiPolygon::new(vec![Polygon::new(LineString::from(exterior), holes)]);
+        let s = SplitMergeSettings {
+            width: 6.0,
+            min_length: 6.0,
+            machine: Machine {
+                width: 6.0,
+                turn_radius: 8.0,
+                working_speed: 2.2,
+                turning_speed: 1.4,
+            },
+            method: SearchMethod::CoarseToFine,
+            step_deg: 1.0,
+            forbidden: &[],
+            regions: &[],
+            criterion: Criterion::default(),
+            min_end_angle: 20f64.to_radians(),
+            tolerance: 3.0,
+            orders: &[],
+        };
+        let mut found = 0;
+        for k in 0..36 {
+            let bearing = (k as f64 * 5.0 + if k % 2 == 0 { 0.0 } else { 0.7 }).to_radians();
+            for rule in [
+                MergeRule::Boustrophedon,
+                MergeRule::SplitMerge {
+                    min_end_angle: 0.35,
+                },
+            ] {
+                let (blocks, _) = cells_at(&field, bearing, rule, &s);
+                for min_length in [0.0, 6.0] {
+                    let fast = borders(&blocks, min_length);
+                    assert_eq!(
+                        fast,
+                        borders_edge_by_edge(&blocks, min_length),
+                        "{k} {rule:?}"
+                    );
+                    found += fast.len();
+                }
+            }
+        }
+        assert!(found > 200, "{found} borders");
+    }
 
     fn block(x0: f64, x1: f64, bearing: f64) -> BlockArea {
         BlockArea {
