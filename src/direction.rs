@@ -11,17 +11,17 @@
 
 use crate::error::{ErrorCode, PlanError};
 use crate::field::{Field, ProhibitedRegion};
-use crate::geometry::PlanarHypot;
 use crate::geometry::{
     bearing_of, deg_to_bearing, forbids_every_direction, swath_direction, BearingRange, SweepFrame,
 };
+use crate::geometry::{PlanarHypot, PlanarSimplify};
 use crate::headland::edges::drawn_edge_count;
 use crate::headland::offset::inset_coarse;
 use crate::objective::{measure, Machine, Objective, SwathStats};
 use crate::prohibited::{forbidding, split};
 use crate::sort::SharedSort;
 use crate::swath::{generate_with, LinePlacement, SwathSettings};
-use geo::{BoundingRect, Coord, LineString, MultiPolygon, Polygon, Simplify};
+use geo::{BoundingRect, Coord, LineString, MultiPolygon, Polygon};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
 
@@ -398,7 +398,7 @@ pub fn edge_directions<'a>(
 
 /// (length, swath direction) of the edges of a ring simplified by `tolerance_m`, longest first.
 fn edges_longest_first(ring: &LineString, tolerance_m: f64) -> Vec<(f64, f64)> {
-    let simplified = ring.simplify(tolerance_m);
+    let simplified = ring.planar_simplify(tolerance_m);
     let ring = if simplified.0.len() >= 4 {
         &simplified
     } else {

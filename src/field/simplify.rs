@@ -6,7 +6,8 @@
 use super::ring::find_self_intersection;
 use super::Field;
 use crate::error::{Warning, WarningCode};
-use geo::{LineString, Simplify};
+use crate::geometry::PlanarSimplify;
+use geo::LineString;
 
 /// The Douglas-Peucker tolerance for a working width: a sixth of it, between 2 cm and 1 m. A
 /// 6 m implement gets 1 m: about the noise of a DGPS-recorded boundary (the benchmark's
@@ -26,7 +27,7 @@ pub fn tolerance_for_width(width: f64) -> f64 {
 /// A closed ring simplified by `tolerance` metres, or `None` when simplifying removes nothing or
 /// would make it cross itself or collapse (the ring is then kept as it is).
 pub fn simplify_ring(ring: &LineString, tolerance: f64) -> Option<LineString> {
-    let simplified = ring.simplify(tolerance);
+    let simplified = ring.planar_simplify(tolerance);
     let n = simplified.0.len();
     if n >= ring.0.len() || n < 4 {
         return None;
