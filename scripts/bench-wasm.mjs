@@ -15,10 +15,10 @@ import { cpus } from "node:os";
 import { join } from "node:path";
 import { fileURLToPath, pathToFileURL } from "node:url";
 import { gzipSync } from "node:zlib";
+import { corpusRows, readField } from "./corpus.mjs";
 
 const ROOT = fileURLToPath(new URL("..", import.meta.url));
 const PKG = join(ROOT, "pkg");
-const FIELDS = join(ROOT, "tests/fields");
 const OUT_DIR = join(ROOT, "target/bench");
 const OUT = join(OUT_DIR, "wasm.json");
 
@@ -75,30 +75,7 @@ function checkPackage() {
 }
 
 /** The corpus README's table: file, area, width, headland passes, turning radius. */
-function corpus() {
-  const readme = join(FIELDS, "README.md");
-  if (!existsSync(readme)) fail("tests/fields/README.md is missing: no corpus table to run");
-  const rows = [];
-  for (const line of readFileSync(readme, "utf8").split("\n")) {
-    const c = line.split("|").map((s) => s.trim());
-    if (c.length >= 10 && c[1].endsWith(".geojson")) {
-      const row = {
-        file: c[1],
-        areaHa: +c[2],
-        options: { width: +c[6], headlandPasses: +c[7], turnRadius: +c[8] },
-      };
-      if (!existsSync(join(FIELDS, row.file))) fail(`tests/fields/${row.file} (in the corpus table) is missing`);
-      if (![row.areaHa, ...Object.values(row.options)].every(Number.isFinite)) {
-        fail(`the corpus table's row for ${row.file} has a column that is not a number`);
-      }
-      rows.push(row);
-    }
-  }
-  if (rows.length === 0) fail("tests/fields/README.md has no corpus table rows");
-  return rows;
-}
-
-const readField = (file) => JSON.parse(readFileSync(join(FIELDS, file), "utf8"));
+const corpus = () => corpusRows(fail);
 
 // ---- the timing loop (also run in the page: it must not use anything from this module) ---------
 

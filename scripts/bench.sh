@@ -28,7 +28,9 @@ stage_measure=(--warm-up-time 0.3 --measurement-time 0.5 --sample-size 10)
 [[ "${QUICK:-}" == 1 ]] && stage_measure=(--warm-up-time 0.2 --measurement-time 0.3 --sample-size 10)
 cargo bench --quiet --bench stages -- "${stage_measure[@]}" | grep -E '^stage|time:' || true
 echo "== the wasm package in Node and Chromium"
-[[ -f pkg/furrow_wasm_bg.wasm ]] || scripts/build.sh
+# Always built: a package left from an older checkout would be measured as this one (a
+# second when nothing changed).
+scripts/build.sh
 node scripts/bench-wasm.mjs "${quick[@]}"
 node scripts/bench-report.mjs
 echo "== done in $(( $(date +%s) - started ))s: target/bench/report.md"
