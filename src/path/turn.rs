@@ -623,19 +623,24 @@ mod tests {
     proptest! {
         #![proptest_config(crate::seeded::config(2048))]
         /// Skipping the edges that do not reach into an arc's ring of chords gives the same
-        /// answer as checking every chord against every edge: turns of every form, forward and
-        /// reversing, between poses near a field's edge and an obstacle.
+        /// answer as checking every chord against every edge: turns of every form, forward,
+        /// reversing and with clothoids, between poses near a field's edge and an obstacle.
         #[test]
         fn the_ring_check_is_the_chord_by_chord_check(
             x in -30.0..30.0f64, y in -30.0..30.0f64, heading in -PI..PI,
             dx in -25.0..25.0f64, dy in -25.0..25.0f64, turn in -PI..PI,
-            radius in 2.0..12.0f64, reverse: bool, edge in 5.0..40.0f64,
+            radius in 2.0..12.0f64, reverse: bool, clothoids: bool, edge in 5.0..40.0f64,
         ) {
             let area = Area::new(
                 &polygon![(x: -60., y: -60.), (x: edge, y: -60.), (x: edge, y: 60.), (x: -60., y: 60.)],
                 &[&polygon![(x: -20., y: 10.), (x: -12., y: 10.), (x: -12., y: 16.), (x: -20., y: 16.)]],
             );
-            let v = Vehicle { turn_radius: radius, reverse, ..Vehicle::default() };
+            let v = Vehicle {
+                turn_radius: radius,
+                reverse: reverse && !clothoids,
+                curvature_rate: clothoids.then_some(0.2),
+                ..Vehicle::default()
+            };
             let from = Pose::new(x, y, heading);
             let to = Pose::new(x + dx, y + dy, heading + turn);
             for t in v.candidates(from, to) {
