@@ -359,9 +359,7 @@ mod tests {
     #[test]
     fn the_boxes_find_the_borders_every_edge_pair_finds() {
         use crate::decompose::cells::MergeRule;
-        use crate::decompose::split_merge::{cells_at, Criterion, SplitMergeSettings};
-        use crate::direction::SearchMethod;
-        use crate::objective::Machine;
+        use crate::decompose::split_merge::cells_at;
         // A field with a bay and two obstacles, its corners rounded as headlands leave them,
         // cut into cells at many directions: borders along slab lines and along oblique edges.
         let mut exterior: Vec<(f64, f64)> = vec![(0., 0.), (300., 0.), (300., 200.), (180., 200.)];
@@ -381,24 +379,7 @@ mod tests {
             ]),
         ];
         let field = MultiPolygon::new(vec![Polygon::new(LineString::from(exterior), holes)]);
-        let s = SplitMergeSettings {
-            width: 6.0,
-            min_length: 6.0,
-            machine: Machine {
-                width: 6.0,
-                turn_radius: 8.0,
-                working_speed: 2.2,
-                turning_speed: 1.4,
-            },
-            method: SearchMethod::CoarseToFine,
-            step_deg: 1.0,
-            forbidden: &[],
-            regions: &[],
-            criterion: Criterion::default(),
-            min_end_angle: 20f64.to_radians(),
-            tolerance: 3.0,
-            orders: &[],
-        };
+        let s = crate::decompose::split_merge::tests::settings(&[]);
         let mut found = 0;
         for k in 0..36 {
             let bearing = (k as f64 * 5.0 + if k % 2 == 0 { 0.0 } else { 0.7 }).to_radians();

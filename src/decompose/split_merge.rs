@@ -592,11 +592,13 @@ fn score(w: &CellWork, left_m2: f64, s: &SplitMergeSettings) -> f64 {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use geo::polygon;
 
-    fn settings<'a>(regions: &'a [ProhibitedRegion]) -> SplitMergeSettings<'a> {
+    /// Settings of a 6 m machine turning on 8 m, working 8 km/h and turning 5 km/h, for tests
+    /// here and of the other decomposition steps.
+    pub(crate) fn settings<'a>(regions: &'a [ProhibitedRegion]) -> SplitMergeSettings<'a> {
         SplitMergeSettings {
             width: 6.0,
             min_length: 6.0,
