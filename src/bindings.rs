@@ -13,6 +13,7 @@
 use crate::error::{ErrorCode, PlanError};
 use crate::field::{geojson, validate};
 use crate::options::PlanOptions;
+use crate::output::json::to_json_string;
 use crate::plan::plan_stages;
 use crate::tracks::{PlanTracks, Turning};
 use serde::Deserialize;
@@ -61,7 +62,7 @@ pub fn plan_js(field: JsValue, options: JsValue) -> Result<JsValue, JsValue> {
     plan.summary.stages_ms.validation += read_ms;
     // One string and the engine's JSON.parse are much cheaper than building the object
     // property by property across the boundary.
-    let text = serde_json::to_string(&plan.to_geojson()).map_err(|e| {
+    let text = to_json_string(&plan.to_geojson()).map_err(|e| {
         to_js_error(&PlanError::new(
             ErrorCode::Internal,
             format!("the plan could not be written: {e}"),
@@ -245,7 +246,7 @@ fn answer(
             )
         })?;
     let path = tracks.shortest_path(position, heading, &targets, turning)?;
-    let text = serde_json::to_string(&tracks.to_feature(&path, turning)).map_err(|e| {
+    let text = to_json_string(&tracks.to_feature(&path, turning)).map_err(|e| {
         PlanError::new(
             ErrorCode::Internal,
             format!("the path could not be written: {e}"),

@@ -22,6 +22,8 @@
 //! the one before it ends. Blocks, obstacles and obstacle groups come first. The collection has two more members:
 //! `summary` ([`Summary`]) and `warnings` (a list of `{code, message, feature?}`).
 
+pub mod json;
+
 use crate::error::Warning;
 use crate::field::projection::OutputAlong;
 use crate::field::Frame;
@@ -231,6 +233,12 @@ impl Plan {
         }
         let vehicle = self.options.vehicle();
         let (mut distance, mut time) = (0.0, 0.0);
+        // The path's points through the projection exact every few hundred metres and
+        // quadratic in between (within 0.3 mm, as the samples), which spares a projection per
+        // vertex of the densely drawn turns and connections; one conversion along the whole
+        // path, as each segment starts where the one before ends. (The field's own outlines
+        // keep the exact projection of every vertex.)
+        let mut along = OutputAlong::new(&self.field.frame);
         for (sequence, seg) in self.path.segments.iter().enumerate() {
             let length = seg.length();
             let speed = if seg.is_working() {
@@ -295,9 +303,9 @@ impl Plan {
                 p.block = self.block_before(sequence);
             }
             let line = if points.is_empty() {
-                out.points(seg.line.0.iter().copied())
+                along.all(seg.line.0.iter().copied())
             } else {
-                out.points(points.iter().copied())
+                along.all(points.iter().copied())
             };
             features.push(out.feature(p, Geometry::LineString(line)));
         }
@@ -312,7 +320,7 @@ impl Plan {
     /// The plan as GeoJSON text (compact).
     pub fn to_geojson_string(&self) -> String {
         // ok: the output types hold only strings, integers and finite floats; serde_json cannot fail.
-        serde_json::to_string(&self.to_geojson()).unwrap_or_default()
+        json::to_json_string(&self.to_geojson()).unwrap_or_default()
     }
 
     /// The prohibited region whose own direction swath `i` follows, if any.
@@ -393,15 +401,6 @@ impl Output<'_> {
 
     fn line(&self, l: &LineString) -> Vec<[f64; 2]> {
         l.0.iter().map(|&c| self.frame.to_output(c)).collect()
-    }
-
-    /// Output coordinates of points along the path ([`OutputAlong`]): the projection exact every
-    /// few tens of metres and affine in between (within 0.3 mm, as the samples), which spares
-    /// a projection per vertex of the densely drawn turns and connections. (The field's own
-    /// outlines keep the exact projection of every vertex.)
-    fn points(&self, points: impl Iterator<Item = Coord>) -> Vec<[f64; 2]> {
-        let mut along = OutputAlong::new(self.frame);
-        points.map(|q| along.convert(q)).collect()
     }
 
     fn polygon(&self, p: &Polygon) -> Geometry {

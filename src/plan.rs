@@ -107,8 +107,8 @@ impl Plan {
             self.options.sample_spacing,
             &self.options.vehicle(),
         );
-        // The projection is smooth: exact every few tens of metres, affine in between (within
-        // 0.3 mm of the exact conversion, 40 times faster).
+        // The projection is smooth: exact every few hundred metres, quadratic in between
+        // (within 0.3 mm of the exact conversion).
         let mut along = OutputAlong::new(&self.field.frame);
         for (x, y) in s.x.iter_mut().zip(s.y.iter_mut()) {
             [*x, *y] = along.convert(geo::Coord { x: *x, y: *y });

@@ -10,7 +10,7 @@
 //! Grid north and true north agree on the central meridian; 1 km east or west of it they differ by
 //! about `0.009° · sin(latitude)`, so compass bearings can be used in the frame unchanged.
 
-use crate::geometry::{round_half_away, PlanarHypot};
+use crate::geometry::round_half_away;
 use geo::Coord;
 
 /// WGS84 semi-major axis in metres.
@@ -243,53 +243,96 @@ impl Frame {
         ]
     }
 
-    /// The map to output coordinates near `p` as an affine map of local metres (exact at `p`,
-    /// its derivative by central differences over a metre): for converting many points close together,
-    /// such as a path sampled every half metre, at the cost of five projections. Within
-    /// [`NEAR_M`] of `p` it is within 0.3 mm of the exact conversion (the output rounds to 0.1 mm).
+    /// The map to output coordinates near `p` as a quadratic map of local metres (exact at `p`,
+    /// its first and second derivatives by central differences over [`NEAR_STEP_M`]): for
+    /// converting many points close together, such as a path sampled every half metre, at the
+    /// cost of nine projections. Within [`NEAR_M`] of `p` it is within 0.3 mm of the exact
+    /// conversion (the output rounds to 0.1 mm); the terms it leaves out grow with the cube of
+    /// the distance over the earth's radius.
     pub fn output_near(&self, p: Coord) -> NearOutput {
+        let scale = match self {
+            Frame::Wgs84(_) => 1e9,
+            Frame::Metric => 1e4,
+        };
         let at = self.to_input(p);
-        let east = self.to_input(Coord {
-            x: p.x + 1.0,
-            y: p.y,
-        });
-        let west = self.to_input(Coord {
-            x: p.x - 1.0,
-            y: p.y,
-        });
-        let north = self.to_input(Coord {
-            x: p.x,
-            y: p.y + 1.0,
-        });
-        let south = self.to_input(Coord {
-            x: p.x,
-            y: p.y - 1.0,
-        });
+        let h = NEAR_STEP_M;
+        // Each projection as a difference from `at`: longitudes across the antimeridian stay
+        // continuous.
+        let from_at = |dx: f64, dy: f64| -> [f64; 2] {
+            let q = self.to_input(Coord {
+                x: p.x + dx,
+                y: p.y + dy,
+            });
+            match self {
+                Frame::Wgs84(_) => [wrap_deg(q[0] - at[0]), q[1] - at[1]],
+                Frame::Metric => [q[0] - at[0], q[1] - at[1]],
+            }
+        };
+        let (e, w, n, s) = (
+            from_at(h, 0.0),
+            from_at(-h, 0.0),
+            from_at(0.0, h),
+            from_at(0.0, -h),
+        );
+        let (ne, nw, se, sw) = (
+            from_at(h, h),
+            from_at(-h, h),
+            from_at(h, -h),
+            from_at(-h, -h),
+        );
+        let per = |f: fn(&[f64; 2]) -> f64| NearTerms {
+            dx: (f(&e) - f(&w)) / (2.0 * h),
+            dy: (f(&n) - f(&s)) / (2.0 * h),
+            dxx: (f(&e) + f(&w)) / (2.0 * h * h),
+            dyy: (f(&n) + f(&s)) / (2.0 * h * h),
+            dxy: (f(&ne) - f(&nw) - f(&se) + f(&sw)) / (4.0 * h * h),
+        };
         NearOutput {
             origin: p,
             at,
-            dx: [(east[0] - west[0]) / 2.0, (east[1] - west[1]) / 2.0],
-            dy: [(north[0] - south[0]) / 2.0, (north[1] - south[1]) / 2.0],
-            scale: match self {
-                Frame::Wgs84(_) => 1e9,
-                Frame::Metric => 1e4,
-            },
+            terms: [per(|q| q[0]), per(|q| q[1])],
+            wraps: matches!(self, Frame::Wgs84(_)),
+            scale,
         }
     }
 }
 
 /// How far from its origin (metres) a [`NearOutput`] is used.
-pub const NEAR_M: f64 = 20.0;
+pub const NEAR_M: f64 = 200.0;
 
-/// The conversion to output coordinates near a point, as an affine map (see
+/// The step (metres) of the central differences that give a [`NearOutput`] its derivatives:
+/// long enough that the doubles' rounding stays far below the output's, short enough that the
+/// differences' own error does too.
+const NEAR_STEP_M: f64 = 10.0;
+
+/// One output coordinate's terms in a [`NearOutput`]: its first derivatives, and half its
+/// second derivatives along x and y (the cross derivative whole), per metre.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct NearTerms {
+    dx: f64,
+    dy: f64,
+    dxx: f64,
+    dyy: f64,
+    dxy: f64,
+}
+
+impl NearTerms {
+    #[inline]
+    fn at(&self, u: f64, v: f64) -> f64 {
+        u * (self.dx + u * self.dxx + v * self.dxy) + v * (self.dy + v * self.dyy)
+    }
+}
+
+/// The conversion to output coordinates near a point, as a quadratic map (see
 /// [`Frame::output_near`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct NearOutput {
     /// Where it is exact, local metres.
     pub origin: Coord,
     at: [f64; 2],
-    dx: [f64; 2],
-    dy: [f64; 2],
+    terms: [NearTerms; 2],
+    /// Whether the first coordinate is a longitude, wrapped into [-180, 180).
+    wraps: bool,
     scale: f64,
 }
 
@@ -298,8 +341,11 @@ impl NearOutput {
     #[inline]
     pub fn apply(&self, q: Coord) -> [f64; 2] {
         let (u, v) = (q.x - self.origin.x, q.y - self.origin.y);
-        let x = self.at[0] + u * self.dx[0] + v * self.dy[0];
-        let y = self.at[1] + u * self.dx[1] + v * self.dy[1];
+        let mut x = self.at[0] + self.terms[0].at(u, v);
+        let y = self.at[1] + self.terms[1].at(u, v);
+        if self.wraps {
+            x = wrap_deg(x);
+        }
         [
             round_half_away(x * self.scale) / self.scale,
             round_half_away(y * self.scale) / self.scale,
@@ -325,7 +371,11 @@ impl<'a> OutputAlong<'a> {
     /// Output coordinates of `q`, within 0.3 mm of [`Frame::to_output`].
     pub fn convert(&mut self, q: Coord) -> [f64; 2] {
         let map = match self.near {
-            Some(n) if (q.x - n.origin.x).planar_hypot(q.y - n.origin.y) < NEAR_M => n,
+            Some(n)
+                if (q.x - n.origin.x).powi(2) + (q.y - n.origin.y).powi(2) < NEAR_M * NEAR_M =>
+            {
+                n
+            }
             _ => {
                 let n = self.frame.output_near(q);
                 self.near = Some(n);
@@ -333,6 +383,11 @@ impl<'a> OutputAlong<'a> {
             }
         };
         map.apply(q)
+    }
+
+    /// Output coordinates of `points`, in a row.
+    pub fn all(&mut self, points: impl Iterator<Item = Coord>) -> Vec<[f64; 2]> {
+        points.map(|q| self.convert(q)).collect()
     }
 }
 
@@ -342,23 +397,49 @@ mod tests {
     use geo::{Area, GeodesicArea, Polygon};
 
     #[test]
-    fn the_affine_map_near_a_point_matches_the_projection_to_the_output_rounding() {
-        let frame = Frame::Wgs84(TransverseMercator::centred_at(24.05, 60.25));
-        for (px, py) in [(0.0, 0.0), (5000.0, -3000.0), (-15000.0, 12000.0)] {
-            let p = Coord { x: px, y: py };
-            let near = frame.output_near(p);
-            for (dx, dy) in [(20.0, 0.0), (0.0, -20.0), (14.0, 14.0), (-3.0, 7.0)] {
-                let q = Coord {
-                    x: px + dx,
-                    y: py + dy,
-                };
-                let (a, b) = (near.apply(q), frame.to_output(q));
-                // Within 3e-9 degrees (0.3 mm): the rounding's 1e-9 and the map's curvature.
-                assert!(
-                    (a[0] - b[0]).abs() <= 3e-9 && (a[1] - b[1]).abs() <= 3e-9,
-                    "{a:?} {b:?}"
-                );
+    fn the_map_near_a_point_matches_the_projection_to_the_output_rounding() {
+        // From the equator to 85 degrees, and across the antimeridian.
+        for (lon0, lat0) in [
+            (24.05, 60.25),
+            (5.3, 0.0),
+            (-60.0, -35.0),
+            (10.0, 85.0),
+            (179.999, 0.5),
+        ] {
+            let frame = Frame::Wgs84(TransverseMercator::centred_at(lon0, lat0));
+            for (px, py) in [(0.0, 0.0), (5000.0, -3000.0), (-15000.0, 12000.0)] {
+                let p = Coord { x: px, y: py };
+                let near = frame.output_near(p);
+                for k in 0..64 {
+                    // Out to the map's reach, every way round.
+                    let angle = k as f64 * 0.1;
+                    let r = NEAR_M * (k % 8 + 1) as f64 / 8.0;
+                    let q = Coord {
+                        x: px + r * angle.cos(),
+                        y: py + r * angle.sin(),
+                    };
+                    let (a, b) = (near.apply(q), frame.to_output(q));
+                    // Within 3e-9 degrees (0.3 mm): the rounding's 1e-9 and the terms the map
+                    // leaves out.
+                    let dlon = (a[0] - b[0]).abs();
+                    assert!(
+                        dlon.min(360.0 - dlon) <= 3e-9 && (a[1] - b[1]).abs() <= 3e-9,
+                        "({lon0}, {lat0}) {p:?} -> {q:?}: {a:?} {b:?}"
+                    );
+                    assert!((-180.0..180.0).contains(&a[0]), "{a:?}");
+                }
             }
+        }
+    }
+
+    #[test]
+    fn the_map_near_a_point_is_exact_in_metres() {
+        let near = Frame::Metric.output_near(Coord { x: 12.5, y: -40.0 });
+        for (x, y) in [(12.5, -40.0), (100.25, 3.5), (-150.0, -200.0)] {
+            assert_eq!(
+                near.apply(Coord { x, y }),
+                Frame::Metric.to_output(Coord { x, y })
+            );
         }
     }
 
@@ -366,8 +447,8 @@ mod tests {
     fn points_in_a_row_convert_within_the_output_rounding_and_exactly_where_a_map_starts() {
         let frame = Frame::Wgs84(TransverseMercator::centred_at(24.05, 60.25));
         let mut along = OutputAlong::new(&frame);
-        // A kilometre of path every half metre, then a jump far away.
-        let mut points: Vec<Coord> = (0..2000)
+        // Five kilometres of path every half metre, then a jump far away.
+        let mut points: Vec<Coord> = (0..10_000)
             .map(|i| Coord {
                 x: 300.0 + 0.3 * i as f64,
                 y: -200.0 + 0.4 * i as f64,
