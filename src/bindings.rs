@@ -259,8 +259,8 @@ fn answer(
 /// The default value of every option.
 #[wasm_bindgen(js_name = defaultOptions, unchecked_return_type = "Required<PlanOptions>")]
 pub fn default_options() -> Result<JsValue, JsValue> {
-    let text = serde_json::to_string(&PlanOptions::default())
-        .map_err(|e| JsValue::from_str(&e.to_string()))?;
+    let text =
+        to_json_string(&PlanOptions::default()).map_err(|e| JsValue::from_str(&e.to_string()))?;
     js_sys::JSON::parse(&text)
 }
 

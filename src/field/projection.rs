@@ -256,30 +256,31 @@ impl Frame {
         };
         let at = self.to_input(p);
         let h = NEAR_STEP_M;
-        // Each projection as a difference from `at`: longitudes across the antimeridian stay
-        // continuous.
-        let from_at = |dx: f64, dy: f64| -> [f64; 2] {
+        // East, west, north, south, north-east, north-west, south-east, south-west of `p`, each
+        // as a difference from `at`: longitudes across the antimeridian stay continuous. (One
+        // loop: the projection's code once in the module, not eight times.)
+        let steps = [
+            (h, 0.0),
+            (-h, 0.0),
+            (0.0, h),
+            (0.0, -h),
+            (h, h),
+            (-h, h),
+            (h, -h),
+            (-h, -h),
+        ];
+        let mut around = [[0.0; 2]; 8];
+        for (d, &(dx, dy)) in around.iter_mut().zip(&steps) {
             let q = self.to_input(Coord {
                 x: p.x + dx,
                 y: p.y + dy,
             });
-            match self {
+            *d = match self {
                 Frame::Wgs84(_) => [wrap_deg(q[0] - at[0]), q[1] - at[1]],
                 Frame::Metric => [q[0] - at[0], q[1] - at[1]],
-            }
-        };
-        let (e, w, n, s) = (
-            from_at(h, 0.0),
-            from_at(-h, 0.0),
-            from_at(0.0, h),
-            from_at(0.0, -h),
-        );
-        let (ne, nw, se, sw) = (
-            from_at(h, h),
-            from_at(-h, h),
-            from_at(h, -h),
-            from_at(-h, -h),
-        );
+            };
+        }
+        let [e, w, n, s, ne, nw, se, sw] = around;
         let per = |f: fn(&[f64; 2]) -> f64| NearTerms {
             dx: (f(&e) - f(&w)) / (2.0 * h),
             dy: (f(&n) - f(&s)) / (2.0 * h),

@@ -26,9 +26,9 @@ pub fn to_json_string<T: Serialize + ?Sized>(value: &T) -> Result<String, serde_
         &mut bytes,
         RoundedNumbers,
     ))?;
-    // ok: serde_json writes only UTF-8 (the strings it was given and ASCII around them).
-    String::from_utf8(bytes)
-        .map_err(|e| serde::ser::Error::custom(format!("the JSON text is not UTF-8: {e}")))
+    // serde_json writes only UTF-8 (the strings it was given and ASCII around them): the
+    // check never fails.
+    String::from_utf8(bytes).map_err(|_| serde::ser::Error::custom("the JSON text is not UTF-8"))
 }
 
 /// serde_json's compact formatter, with numbers of at most nine decimals written as integers.
@@ -42,7 +42,9 @@ const UNIT: u64 = 10u64.pow(DECIMALS);
 const SCALE: f64 = UNIT as f64;
 
 impl Formatter for RoundedNumbers {
-    #[inline]
+    // Not inlined: every float field of every struct written calls it, and one copy keeps the
+    // module small.
+    #[inline(never)]
     fn write_f64<W: ?Sized + io::Write>(&mut self, writer: &mut W, value: f64) -> io::Result<()> {
         let mut buffer = [0u8; 32];
         match write_decimal(value, &mut buffer) {
