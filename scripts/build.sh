@@ -47,6 +47,8 @@ cat > pkg/package.json <<JSON
 JSON
 cp js/README.md pkg/README.md
 raw=$(wc -c < pkg/furrow_wasm_bg.wasm)
-gz=$(gzip -9 -c pkg/furrow_wasm_bg.wasm | wc -c)
-echo "[build] pkg/furrow_wasm_bg.wasm: $raw bytes, $gz gzipped"
+# Gzipped as the bench measures it against the 400 KB target (Node's zlib at level 9; GNU gzip
+# comes out about 2.4 KB smaller).
+gz=$(node -e 'process.stdout.write(String(require("zlib").gzipSync(require("fs").readFileSync(process.argv[1]), { level: 9 }).length))' pkg/furrow_wasm_bg.wasm)
+echo "[build] pkg/furrow_wasm_bg.wasm: $raw bytes, $gz gzipped (Node's zlib, level 9)"
 node scripts/site.mjs
