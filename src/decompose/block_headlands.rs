@@ -132,19 +132,12 @@ pub fn borders(blocks: &[BlockArea], min_length: f64) -> Vec<Border> {
                     if apart(&a_box, &p_box) {
                         continue;
                     }
-                    // Collinear: both ends of the other edge on this edge's line.
-                    let off = |x: Coord| ((x - a).x * u.y - (x - a).y * u.x).abs();
-                    if off(p) > ON_EDGE_M || off(q) > ON_EDGE_M {
-                        continue;
-                    }
-                    let t = |x: Coord| (x - a).x * u.x + (x - a).y * u.y;
-                    let (t0, t1) = (t(p).min(t(q)).max(0.0), t(p).max(t(q)).min(len));
-                    if t1 - t0 >= ON_EDGE_M {
+                    if let Some((from, to)) = shared_stretch(a, u, len, p, q) {
                         out.push(Border {
                             first: i,
                             second: j,
-                            from: a + u * t0,
-                            to: a + u * t1,
+                            from,
+                            to,
                         });
                     }
                 }
@@ -156,6 +149,19 @@ pub fn borders(blocks: &[BlockArea], min_length: f64) -> Vec<Border> {
         }
     }
     out
+}
+
+/// The stretch of the edge from `a` (unit direction `u`, `len` metres long) that the edge
+/// `p`-`q` lies along: both of its ends within the tolerance of the edge's line, and overlapping
+/// it by at least the tolerance.
+fn shared_stretch(a: Coord, u: Coord, len: f64, p: Coord, q: Coord) -> Option<(Coord, Coord)> {
+    let off = |x: Coord| ((x - a).x * u.y - (x - a).y * u.x).abs();
+    if off(p) > ON_EDGE_M || off(q) > ON_EDGE_M {
+        return None;
+    }
+    let t = |x: Coord| (x - a).x * u.x + (x - a).y * u.y;
+    let (t0, t1) = (t(p).min(t(q)).max(0.0), t(p).max(t(q)).min(len));
+    (t1 - t0 >= ON_EDGE_M).then(|| (a + u * t0, a + u * t1))
 }
 
 /// Whether a border needs a headland: neither block's swaths run along it (within the
@@ -331,18 +337,12 @@ mod tests {
                     }
                     let u = d / len;
                     for &(p, q) in &edges[i] {
-                        let off = |x: Coord| ((x - a).x * u.y - (x - a).y * u.x).abs();
-                        if off(p) > ON_EDGE_M || off(q) > ON_EDGE_M {
-                            continue;
-                        }
-                        let t = |x: Coord| (x - a).x * u.x + (x - a).y * u.y;
-                        let (t0, t1) = (t(p).min(t(q)).max(0.0), t(p).max(t(q)).min(len));
-                        if t1 - t0 >= ON_EDGE_M {
+                        if let Some((from, to)) = shared_stretch(a, u, len, p, q) {
                             out.push(Border {
                                 first: i,
                                 second: j,
-                                from: a + u * t0,
-                                to: a + u * t1,
+                                from,
+                                to,
                             });
                         }
                     }
