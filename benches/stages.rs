@@ -41,7 +41,10 @@ fn stages(c: &mut Criterion) {
     group.finish();
     let mut group = c.benchmark_group("stage-route");
     for (field, _, plan) in &fields {
-        let settings = route_settings(&plan.options, &plan.field);
+        let settings = furrow::route::RouteSettings {
+            crop: Some(plan.headlands.inner.clone()),
+            ..route_settings(&plan.options, &plan.field)
+        };
         group.bench_function(&field.name, |b| {
             b.iter(|| {
                 plan_route(

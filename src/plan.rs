@@ -324,7 +324,7 @@ pub(crate) fn plan_stages(
     };
     times.lap(&mut clock, |t| &mut t.decomposition);
     // The ways along the headland, for every candidate that adds no passes of its own.
-    let graph = HeadlandGraph::new(&headlands.passes, width);
+    let graph = HeadlandGraph::new(&headlands.passes, width).with_crop(&headlands.inner);
     times.lap(&mut clock, |t| &mut t.route);
     let prepared = Prepared {
         mode,
@@ -670,7 +670,9 @@ fn no_swaths(bearing: f64, width: f64) -> Swaths {
 }
 
 /// The route stage's settings for these options: the patterns to choose from, the headland
-/// order, the machine, and the entrance and exit in the field's local metres.
+/// order, the machine, and the entrance and exit in the field's local metres. The crop is for
+/// the caller to give: a plan gives its inner field (`RouteSettings { crop:
+/// Some(plan.headlands.inner.clone()), ..route_settings(..) }` routes as the plan did).
 pub fn route_settings(options: &PlanOptions, field: &Field) -> RouteSettings {
     let custom: Vec<usize> = options.custom_order.iter().map(|&p| p as usize).collect();
     RouteSettings {
@@ -688,6 +690,7 @@ pub fn route_settings(options: &PlanOptions, field: &Field) -> RouteSettings {
         entrance: options.entrance.map(|p| field.frame.to_local(p)),
         exit: options.exit.map(|p| field.frame.to_local(p)),
         seed: ROUTE_SEED,
+        crop: None,
     }
 }
 
@@ -980,7 +983,7 @@ fn work(
     });
     let route = match &earlier {
         Some((route, _)) => route.clone(),
-        // The passes of `prep` alone: their graph is built.
+        // The passes (and the inner field) of `prep` alone: their graph is built.
         None if headlands.passes.len() == prep.headlands.passes.len() => plan_route_on(
             &prep.graph,
             &swaths,
@@ -992,7 +995,10 @@ fn work(
             &swaths,
             &blocks,
             &headlands.passes,
-            &route_settings(options, field),
+            &RouteSettings {
+                crop: Some(headlands.inner.clone()),
+                ..route_settings(options, field)
+            },
         ),
     };
     times.lap(&mut clock, |t| &mut t.route);

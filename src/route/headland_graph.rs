@@ -5,7 +5,8 @@
 //! along borders between blocks. A point (a swath end, the entrance) joins the graph by a short
 //! straight *spur* to the nearest point of a line; a machine changes from one line to another by
 //! a straight *hop* where they come within a working width of each other (neighbouring passes of
-//! one headland, a block's pass meeting the field's). A connection is the shortest way through
+//! one headland, a block's pass meeting the field's), but not across the crop of the inner field
+//! ([`HeadlandGraph::with_crop`]). A connection is the shortest way through
 //! that graph: spur, lines and hops, spur. Points the graph cannot reach are joined straight, at
 //! a cost the block sequence avoids (see [`CROSSING_PENALTY_M`]).
 //!
@@ -31,11 +32,11 @@
 //! assert!(c.line(0, 1).is_some());
 //! ```
 
-use crate::geometry::{segment_foot, IndexedSegment, PlanarHypot};
+use crate::geometry::{point_segment_distance, segment_foot, IndexedSegment, PlanarHypot};
 use crate::headland::HeadlandPass;
 use crate::sort::SharedSort;
-use geo::{Coord, LineString};
-use rstar::RTree;
+use geo::{Contains, Coord, LineString, MultiPolygon};
+use rstar::{RTree, AABB};
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
 
@@ -133,6 +134,76 @@ pub struct HeadlandGraph {
     lines: Vec<GraphLine>,
     tree: RTree<Segment>,
     width: f64,
+    /// The crop no hop may cross, if given ([`HeadlandGraph::with_crop`]).
+    crop: Option<Crop>,
+}
+
+/// How deep (metres) a hop may reach into the crop: a pass rounded at the turning radius cuts
+/// the sharp corners of the inner field by a little.
+const CROP_TOLERANCE_M: f64 = 0.05;
+
+/// The crop standing while the machine moves between blocks (the inner field), its edges
+/// indexed.
+#[derive(Debug, Clone)]
+struct Crop {
+    area: MultiPolygon,
+    edges: RTree<Segment>,
+}
+
+impl Crop {
+    fn new(area: &MultiPolygon) -> Self {
+        let mut edges = Vec::new();
+        for p in &area.0 {
+            for ring in std::iter::once(p.exterior()).chain(p.interiors()) {
+                for (index, w) in ring.0.windows(2).enumerate() {
+                    edges.push(Segment::new(w[0], w[1], 0, index));
+                }
+            }
+        }
+        Crop {
+            area: area.clone(),
+            edges: RTree::bulk_load(edges),
+        }
+    }
+
+    /// Whether the straight way from `a` to `b` runs through the crop deeper than
+    /// [`CROP_TOLERANCE_M`]: it is cut where it crosses the crop's edges, and each piece longer
+    /// than the tolerance is tested at its middle.
+    fn crossed_by(&self, a: Coord, b: Coord) -> bool {
+        let t = CROP_TOLERANCE_M;
+        let envelope = AABB::from_corners(
+            [a.x.min(b.x) - t, a.y.min(b.y) - t],
+            [a.x.max(b.x) + t, a.y.max(b.y) + t],
+        );
+        let d = b - a;
+        let length = d.x.planar_hypot(d.y);
+        let mut cuts = vec![0.0, 1.0];
+        for e in self.edges.locate_in_envelope_intersecting(&envelope) {
+            let f = e.b - e.a;
+            let denominator = d.x * f.y - d.y * f.x;
+            if denominator.abs() < 1e-12 {
+                continue;
+            }
+            let g = e.a - a;
+            let along = (g.x * f.y - g.y * f.x) / denominator;
+            let on_edge = (g.x * d.y - g.y * d.x) / denominator;
+            if (0.0..=1.0).contains(&along) && (0.0..=1.0).contains(&on_edge) {
+                cuts.push(along);
+            }
+        }
+        cuts.shared_sort_by(f64::total_cmp);
+        cuts.windows(2).any(|w| {
+            if (w[1] - w[0]) * length <= 2.0 * t {
+                return false;
+            }
+            let m = a + d * ((w[0] + w[1]) / 2.0);
+            let deep = self
+                .edges
+                .nearest_neighbor(&[m.x, m.y])
+                .is_none_or(|e| point_segment_distance(m, e.a, e.b) > t);
+            deep && self.area.contains(&m)
+        })
+    }
 }
 
 impl HeadlandGraph {
@@ -175,7 +246,38 @@ impl HeadlandGraph {
             lines,
             tree: RTree::bulk_load(segments),
             width,
+            crop: None,
         }
+    }
+
+    /// The graph with the crop its hops must not cross: the inner field, where the crop stands
+    /// while the machine moves between blocks. A hop that would run through it (deeper than a
+    /// few centimetres) is not made: two passes that come near each other across a narrow neck
+    /// of the field are not joined across the crop.
+    ///
+    /// ```
+    /// use furrow::headland::{HeadlandPass, PassAround};
+    /// use furrow::route::headland_graph::HeadlandGraph;
+    /// use geo::{coord, polygon, LineString, MultiPolygon};
+    ///
+    /// // Two passes 4 m apart, and between them, longer than they are, a 3 m strip of crop that
+    /// // a 6 m machine would hop across.
+    /// let west = LineString::from(vec![(0., 0.), (0., 100.)]);
+    /// let east = LineString::from(vec![(4., 0.), (4., 100.)]);
+    /// let passes = [
+    ///     HeadlandPass { index: 1, line: west, closed: false, around: PassAround::Field },
+    ///     HeadlandPass { index: 1, line: east, closed: false, around: PassAround::Field },
+    /// ];
+    /// let crop = polygon![(x: 0.5, y: -10.), (x: 3.5, y: -10.), (x: 3.5, y: 110.), (x: 0.5, y: 110.)];
+    /// let ends = [coord! { x: -1.0, y: 50.0 }, coord! { x: 5.0, y: 50.0 }];
+    /// let open = HeadlandGraph::new(&passes, 6.0);
+    /// assert!(open.connect(&ends).line(0, 1).is_some());
+    /// let with_crop = HeadlandGraph::new(&passes, 6.0).with_crop(&MultiPolygon::new(vec![crop]));
+    /// assert!(with_crop.connect(&ends).line(0, 1).is_none());
+    /// ```
+    pub fn with_crop(mut self, crop: &MultiPolygon) -> Self {
+        self.crop = Some(Crop::new(crop));
+        self
     }
 
     /// Whether the graph has no line at all (a field without headland passes).
@@ -267,6 +369,13 @@ impl HeadlandGraph {
                 }
             }
             for (other, d, at, foot) in best {
+                if self
+                    .crop
+                    .as_ref()
+                    .is_some_and(|c| c.crossed_by(point, foot))
+                {
+                    continue;
+                }
                 hops.push((n, nodes.len(), d));
                 nodes.push(Node {
                     line: other,
@@ -490,7 +599,7 @@ impl Connections<'_> {
 mod tests {
     use super::*;
     use crate::headland::PassAround;
-    use geo::{coord, Euclidean, Length};
+    use geo::{coord, polygon, Euclidean, Length};
 
     fn ring(d: f64, size: f64) -> LineString {
         LineString::from(vec![
@@ -509,6 +618,59 @@ mod tests {
             closed,
             around: PassAround::Field,
         }
+    }
+
+    /// A 100 m square of crop with a 20 m square hole (an obstacle's headland) in its middle.
+    fn square_crop() -> Crop {
+        let outer = ring(0.0, 100.0);
+        let hole = ring(40.0, 100.0);
+        Crop::new(&MultiPolygon::new(vec![geo::Polygon::new(
+            outer,
+            vec![hole],
+        )]))
+    }
+
+    #[test]
+    fn a_way_through_the_crop_crosses_it_and_one_round_it_does_not() {
+        let crop = square_crop();
+        // Outside, along the south edge 3 m out.
+        assert!(!crop.crossed_by(coord! { x: -3.0, y: -3.0 }, coord! { x: 103.0, y: -3.0 }));
+        // From outside into the crop, and across it.
+        assert!(crop.crossed_by(coord! { x: -3.0, y: 50.0 }, coord! { x: 10.0, y: 50.0 }));
+        assert!(crop.crossed_by(coord! { x: -3.0, y: 50.0 }, coord! { x: 103.0, y: 50.0 }));
+        // Within the hole, and from the hole's edge into it.
+        assert!(!crop.crossed_by(coord! { x: 42.0, y: 42.0 }, coord! { x: 58.0, y: 58.0 }));
+        assert!(!crop.crossed_by(coord! { x: 40.0, y: 50.0 }, coord! { x: 55.0, y: 45.0 }));
+        // Along an edge, and across the field's corner by less than the tolerance: not
+        // crossings.
+        assert!(!crop.crossed_by(coord! { x: 0.0, y: 10.0 }, coord! { x: 0.0, y: 90.0 }));
+        assert!(!crop.crossed_by(coord! { x: -1.0, y: 1.02 }, coord! { x: 1.02, y: -1.0 }));
+        // Across the same corner 1.4 m deep: a crossing.
+        assert!(crop.crossed_by(coord! { x: -1.0, y: 3.0 }, coord! { x: 3.0, y: -1.0 }));
+    }
+
+    #[test]
+    fn a_hop_across_the_crop_is_not_made() {
+        // Two passes round the field 3 m apart and, between them along the west side, a strip of
+        // crop 1 m wide: two points beside the west side are a hop apart, but not across the
+        // strip. With no other way between the passes, they are joined straight, at the
+        // crossing penalty.
+        let outer = ring(0.0, 100.0);
+        let inner = ring(3.0, 100.0);
+        let passes = [pass(1, outer, true), pass(2, inner, true)];
+        let strip =
+            polygon![(x: 1.0, y: 10.), (x: 2.0, y: 10.), (x: 2.0, y: 90.), (x: 1.0, y: 90.)];
+        let ends = [coord! { x: -1.0, y: 50.0 }, coord! { x: 4.0, y: 50.0 }];
+        let plain = HeadlandGraph::new(&passes, 6.0);
+        let cropped = HeadlandGraph::new(&passes, 6.0).with_crop(&MultiPolygon::new(vec![strip]));
+        let (near, round) = (plain.connect(&ends), cropped.connect(&ends));
+        assert!((near.distance(0, 1) - 5.0).abs() < 1e-9);
+        assert!(near.line(0, 1).is_some());
+        assert!(round.distance(0, 1) >= CROSSING_PENALTY_M);
+        assert!(round.line(0, 1).is_none());
+        // Beyond the strip's end the same hop is made.
+        let north = [coord! { x: -1.0, y: 95.0 }, coord! { x: 4.0, y: 95.0 }];
+        assert!((cropped.connect(&north).distance(0, 1) - 5.0).abs() < 1e-9);
     }
 
     #[test]

@@ -29,7 +29,7 @@ use crate::geometry::{Extremes, PlanarHypot};
 use crate::headland::{HeadlandOrder, HeadlandPass, PassAround};
 use crate::sort::SharedSort;
 use crate::swath::Swaths;
-use geo::{Coord, Intersects, LineString};
+use geo::{Coord, Intersects, LineString, MultiPolygon};
 use headland_graph::{HeadlandGraph, CROSSING_PENALTY_M};
 use pattern::{ways, BlockWay, SwathOrder};
 use sequence::{SequenceMethod, SequenceProblem, Way};
@@ -165,6 +165,9 @@ pub struct RouteSettings {
     pub exit: Option<Coord>,
     /// Seed of the ant colony (for block orders too large to solve exactly).
     pub seed: u64,
+    /// The crop standing while the machine moves between blocks (the inner field): the headland
+    /// graph's hops do not cross it ([`HeadlandGraph::with_crop`]). `None`: hops anywhere.
+    pub crop: Option<MultiPolygon>,
 }
 
 impl Default for RouteSettings {
@@ -177,6 +180,7 @@ impl Default for RouteSettings {
             entrance: None,
             exit: None,
             seed: 1,
+            crop: None,
         }
     }
 }
@@ -208,7 +212,7 @@ pub fn plan_route(
     settings: &RouteSettings,
 ) -> Route {
     plan_route_on(
-        &HeadlandGraph::new(passes, settings.width),
+        &headland_graph(passes, settings),
         swaths,
         blocks,
         passes,
@@ -216,8 +220,17 @@ pub fn plan_route(
     )
 }
 
-/// [`plan_route`] along a headland graph built by the caller, `HeadlandGraph::new(passes,
-/// settings.width)`: plans that differ only in their swaths share it (the same route as
+/// The headland graph of `passes` for these settings: their width, and their crop if any.
+pub fn headland_graph(passes: &[HeadlandPass], settings: &RouteSettings) -> HeadlandGraph {
+    let graph = HeadlandGraph::new(passes, settings.width);
+    match &settings.crop {
+        Some(crop) => graph.with_crop(crop),
+        None => graph,
+    }
+}
+
+/// [`plan_route`] along a headland graph built by the caller, [`headland_graph`]`(passes,
+/// settings)`: plans that differ only in their swaths share it (the same route as
 /// [`plan_route`]'s).
 pub fn plan_route_on(
     graph: &HeadlandGraph,
@@ -457,7 +470,7 @@ pub fn block_sequence_problem(
     passes: &[HeadlandPass],
     settings: &RouteSettings,
 ) -> SequenceProblem {
-    let graph = HeadlandGraph::new(passes, settings.width);
+    let graph = headland_graph(passes, settings);
     let mut position = settings.entrance;
     if settings.headland_order == HeadlandOrder::First {
         position = append_headland_passes(&mut Vec::new(), passes, position, true, not_island);
