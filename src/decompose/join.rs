@@ -484,24 +484,7 @@ mod tests {
     fn blocks_joined_several_times_come_out_as_one_outline() {
         // A 300 x 60 strip cut in four, each worked east-west: they join into one block, whose
         // outline is made once from its four parts.
-        let s = SplitMergeSettings {
-            width: 6.0,
-            min_length: 6.0,
-            machine: Machine {
-                width: 6.0,
-                turn_radius: 8.0,
-                working_speed: 2.2,
-                turning_speed: 1.4,
-            },
-            method: SearchMethod::CoarseToFine,
-            step_deg: 1.0,
-            forbidden: &[],
-            regions: &[],
-            criterion: Criterion::default(),
-            min_end_angle: 20f64.to_radians(),
-            tolerance: 3.0,
-            orders: &[],
-        };
+        let s = crate::decompose::split_merge::tests::settings(&[]);
         let east_west = std::f64::consts::FRAC_PI_2;
         let blocks: Vec<BlockArea> = (0..4)
             .map(|k| {

@@ -32,7 +32,9 @@
 //! assert!(c.line(0, 1).is_some());
 //! ```
 
-use crate::geometry::{point_segment_distance, segment_foot, IndexedSegment, PlanarHypot};
+use crate::geometry::{
+    point_segment_distance, segment_foot, Extremes, IndexedSegment, PlanarHypot,
+};
 use crate::headland::HeadlandPass;
 use crate::sort::SharedSort;
 use geo::{Contains, Coord, LineString, MultiPolygon};
@@ -168,12 +170,13 @@ impl Crop {
 
     /// Whether the straight way from `a` to `b` runs through the crop deeper than
     /// [`CROP_TOLERANCE_M`]: it is cut where it crosses the crop's edges, and each piece longer
-    /// than the tolerance is tested at its middle.
+    /// than the tolerance is tested at its middle. (`geometry::clip_segment` gives the pieces
+    /// too, but projects and sorts every edge of the field at each call: a hop meets a few.)
     fn crossed_by(&self, a: Coord, b: Coord) -> bool {
         let t = CROP_TOLERANCE_M;
         let envelope = AABB::from_corners(
-            [a.x.min(b.x) - t, a.y.min(b.y) - t],
-            [a.x.max(b.x) + t, a.y.max(b.y) + t],
+            [a.x.lesser(b.x) - t, a.y.lesser(b.y) - t],
+            [a.x.greater(b.x) + t, a.y.greater(b.y) + t],
         );
         let d = b - a;
         let length = d.x.planar_hypot(d.y);
