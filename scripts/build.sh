@@ -11,7 +11,7 @@ echo "[build] wasm (release)"
 # times slower). The planner's own code at opt-level 2: 14 KB less gzipped than at 3, and as
 # fast in Node (geometric mean of the corpus 0.99, interleaved: scripts/bench-compare.mjs),
 # which keeps the module clear of the 400 KB target. Native builds keep opt-level 3 throughout.
-cargo build --release --target wasm32-unknown-unknown --lib \
+cargo build --release --target wasm32-unknown-unknown --lib --features small-alloc \
   --config 'profile.release.package."*".opt-level="z"' \
   --config 'profile.release.opt-level=2'
 rm -rf pkg

@@ -23,14 +23,14 @@ step() {
 wasm_test() {
   CARGO_TARGET_WASM32_UNKNOWN_UNKNOWN_RUNNER=wasm-bindgen-test-runner \
     WASM_BINDGEN_TEST_TIMEOUT=120 \
-    cargo test --target wasm32-unknown-unknown --test wasm "$@"
+    cargo test --target wasm32-unknown-unknown --features small-alloc --test wasm "$@"
 }
 
 step "format" cargo fmt --check
 lints() {
   cargo clippy --all-targets --quiet -- -D warnings
   # The bindings only exist for wasm32.
-  cargo clippy --target wasm32-unknown-unknown --lib --test wasm --quiet -- -D warnings
+  cargo clippy --target wasm32-unknown-unknown --features small-alloc --lib --test wasm --quiet -- -D warnings
 }
 step "lints" lints
 step "native tests" cargo test

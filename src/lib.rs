@@ -54,12 +54,25 @@ pub mod plan;
 pub mod prohibited;
 pub mod rng;
 pub mod route;
+pub mod small_alloc;
 pub mod sort;
 pub mod swath;
 pub mod tracks;
 
 #[cfg(target_arch = "wasm32")]
 pub mod bindings;
+
+/// The npm package's allocator (feature `small-alloc`): small blocks reused in front of
+/// dlmalloc, single-threaded, so only where wasm runs without threads.
+#[cfg(all(
+    feature = "small-alloc",
+    target_arch = "wasm32",
+    not(target_feature = "atomics")
+))]
+#[global_allocator]
+// SAFETY: wasm32 without atomics runs one thread.
+static ALLOCATOR: small_alloc::SmallBlocks<std::alloc::System> =
+    unsafe { small_alloc::SmallBlocks::new(std::alloc::System) };
 
 /// The fixed seed of the property tests, shared with the integration tests.
 #[cfg(test)]

@@ -117,8 +117,7 @@ pub fn sample(path: &Path, spacing: f64, v: &Vehicle) -> Samples {
                 out.heading_deg.extend(std::iter::repeat_n(heading, count));
             } else {
                 let poses = piece.poses();
-                for &s in &along {
-                    let p = poses.at(s);
+                for p in poses.evenly(piece.length, n).skip(first) {
                     out.x.push(p.x);
                     out.y.push(p.y);
                     out.heading_deg.push(compass_deg(p.heading));

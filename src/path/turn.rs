@@ -478,8 +478,8 @@ impl Area {
                 }
                 None => &near,
             };
-            for i in 0..=n {
-                let p = point(i);
+            for (i, p) in poses.evenly(s.length, n).enumerate() {
+                let p = Coord { x: p.x, y: p.y };
                 if let Some(a) = previous {
                     let against = if i == 0 { &near[..] } else { edges };
                     if crosses_any(against, a, p) {
@@ -556,10 +556,11 @@ pub fn chord_points(s: &Segment) -> impl Iterator<Item = Coord> + '_ {
 pub fn chord_poses(s: &Segment) -> impl Iterator<Item = (Pose, f64)> + '_ {
     let n = chord_count(s);
     let poses = s.poses();
-    (0..=n).map(move |i| {
-        let at = chord_distance(s, i, n);
-        (poses.at(at), s.curvature_at(at))
-    })
+    let at = (0..=n).map(move |i| chord_distance(s, i, n));
+    poses
+        .evenly(s.length, n)
+        .zip(at)
+        .map(move |(p, at)| (p, s.curvature_at(at)))
 }
 
 /// The number of chords [`chord_points`] divides a segment into.

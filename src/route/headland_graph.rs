@@ -497,19 +497,37 @@ impl PartialOrd for Queued {
 }
 
 impl Connections<'_> {
-    /// Shortest distances from node `source` to every node, and the edge each was reached by.
-    fn search(&self, source: usize) -> (Vec<f64>, Vec<Option<(usize, Edge)>>) {
+    /// Shortest distances from node `source` to the nodes `targets`, and the edge each node on
+    /// the way was reached by. The search ends once every target is settled: their distances
+    /// and the edges back to `source` are then final, as a search of the whole graph would
+    /// leave them (a settled node's entries never change again); other nodes' may be larger.
+    fn search(&self, source: usize, targets: &[usize]) -> (Vec<f64>, Vec<Option<(usize, Edge)>>) {
         let n = self.nodes.len();
         let mut dist = vec![f64::INFINITY; n];
         let mut came: Vec<Option<(usize, Edge)>> = vec![None; n];
         let mut heap = BinaryHeap::new();
-        if source < n {
+        let mut wanted = vec![false; n];
+        let mut left = 0;
+        for &t in targets {
+            if let Some(w) = wanted.get_mut(t).filter(|w| !**w) {
+                *w = true;
+                left += 1;
+            }
+        }
+        if source < n && left > 0 {
             dist[source] = 0.0;
             heap.push(Queued(0.0, source));
         }
         while let Some(Queued(d, u)) = heap.pop() {
             if d > dist[u] {
                 continue;
+            }
+            if wanted[u] {
+                wanted[u] = false;
+                left -= 1;
+                if left == 0 {
+                    break;
+                }
             }
             for e in &self.edges[u] {
                 let nd = d + e.cost;
@@ -534,7 +552,11 @@ impl Connections<'_> {
         let Some(&Some((source, spur))) = self.spurs.get(from) else {
             return vec![None; to.len()];
         };
-        let (dist, _) = self.search(source);
+        let targets: Vec<usize> = to
+            .iter()
+            .filter_map(|&t| self.spurs.get(t).copied().flatten().map(|(node, _)| node))
+            .collect();
+        let (dist, _) = self.search(source, &targets);
         to.iter()
             .map(|&t| match self.spurs.get(t) {
                 Some(&Some((node, back))) if dist[node].is_finite() => {
@@ -566,7 +588,7 @@ impl Connections<'_> {
         let &Some((target, _)) = self.spurs.get(to)? else {
             return None;
         };
-        let (dist, came) = self.search(source);
+        let (dist, came) = self.search(source, &[target]);
         if !dist.get(target)?.is_finite() {
             return None;
         }
@@ -691,6 +713,58 @@ mod tests {
         assert_eq!(line.0.last(), Some(&ends[1]));
         // And back, the same way.
         assert!((c.distance(1, 0) - d).abs() < 1e-9);
+    }
+
+    #[test]
+    fn a_search_ended_at_its_targets_finds_their_ways_as_a_search_of_the_whole_graph() {
+        // Three rings of passes round a field with an obstacle's pass, and points all about.
+        let passes = [
+            pass(1, ring(3.0, 100.0), true),
+            pass(2, ring(9.0, 100.0), true),
+            pass(3, ring(15.0, 100.0), true),
+            pass(4, ring(44.0, 100.0), true),
+        ];
+        let g = HeadlandGraph::new(&passes, 6.0);
+        let points: Vec<Coord> = (0..24)
+            .map(|i| {
+                let t = i as f64 * 0.7;
+                coord! { x: 50.0 + 47.0 * t.cos(), y: 50.0 + 47.0 * t.sin() * (1.0 - 0.03 * i as f64) }
+            })
+            .collect();
+        let c = g.connect(&points);
+        let every: Vec<usize> = (0..c.nodes.len()).collect();
+        let mut ended_early = 0;
+        for source in 0..c.nodes.len() {
+            let (all_dist, all_came) = c.search(source, &every);
+            for target in (0..c.nodes.len()).step_by(3) {
+                let (dist, came) = c.search(source, &[target]);
+                assert_eq!(dist[target].to_bits(), all_dist[target].to_bits());
+                // The way back from the target, edge by edge.
+                let mut v = target;
+                while v != source {
+                    let Some((u, e)) = came[v] else {
+                        assert!(all_came[v].is_none() && !dist[target].is_finite());
+                        break;
+                    };
+                    let (au, ae) = all_came[v].expect("the whole search reaches it too");
+                    assert_eq!((u, e.to, e.cost.to_bits()), (au, ae.to, ae.cost.to_bits()));
+                    v = u;
+                }
+                ended_early += usize::from(
+                    dist.iter().filter(|d| d.is_finite()).count()
+                        < all_dist.iter().filter(|d| d.is_finite()).count(),
+                );
+            }
+        }
+        assert!(ended_early > 0, "some searches end before the whole graph");
+        // And the distances between the points, one target or many.
+        let everyone: Vec<usize> = (0..points.len()).collect();
+        for from in 0..points.len() {
+            let many = c.distances(from, &everyone);
+            for (to, &d) in many.iter().enumerate() {
+                assert_eq!(c.distances(from, &[to]), vec![d]);
+            }
+        }
     }
 
     #[test]
