@@ -1,4 +1,4 @@
-//! A cache of small freed blocks in front of an allocator: the wasm build's global allocator.
+//! A cache of small freed blocks in front of an allocator: the npm build's global allocator.
 //!
 //! Planning makes and drops many small vectors (trapezoid chains, swath lists, candidate
 //! orders). In WebAssembly every one of them goes through dlmalloc, whose bins and coalescing
@@ -89,12 +89,13 @@ unsafe impl<A: GlobalAlloc> GlobalAlloc for SmallBlocks<A> {
         let Some(c) = class_of(&layout) else {
             return self.inner.alloc(layout);
         };
-        let heads = &mut *self.heads.get();
-        let head = heads[c];
+        // Through the raw pointer, with no reference to the lists held while `inner` runs.
+        let heads = self.heads.get();
+        let head = (*heads)[c];
         if head.is_null() {
             self.inner.alloc(class_layout(c))
         } else {
-            heads[c] = *(head as *mut *mut u8);
+            (*heads)[c] = *(head as *mut *mut u8);
             head
         }
     }
@@ -104,9 +105,9 @@ unsafe impl<A: GlobalAlloc> GlobalAlloc for SmallBlocks<A> {
         let Some(c) = class_of(&layout) else {
             return self.inner.dealloc(ptr, layout);
         };
-        let heads = &mut *self.heads.get();
-        *(ptr as *mut *mut u8) = heads[c];
-        heads[c] = ptr;
+        let heads = self.heads.get();
+        *(ptr as *mut *mut u8) = (*heads)[c];
+        (*heads)[c] = ptr;
     }
 
     #[inline(never)]
