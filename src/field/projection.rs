@@ -356,7 +356,7 @@ impl NearOutput {
 
 /// Output coordinates of many points in a row, each near the one before (a sampled path, the
 /// vertices of a turn): a [`NearOutput`] from the last exact point while within [`NEAR_M`] of
-/// it, a new one (five projections) beyond.
+/// it, a new one (nine projections) beyond.
 #[derive(Debug, Clone)]
 pub struct OutputAlong<'a> {
     frame: &'a Frame,
