@@ -30,7 +30,7 @@ const CLASSES: usize = LARGEST / STEP;
 /// use furrow::small_alloc::SmallBlocks;
 /// use std::alloc::{GlobalAlloc, Layout, System};
 ///
-/// let layout = Layout::from_size_align(40, 8).unwrap();
+/// let layout = Layout::from_size_align(40, 8)?;
 /// unsafe {
 ///     // Used by this thread alone.
 ///     let blocks = SmallBlocks::new(System);
@@ -40,6 +40,7 @@ const CLASSES: usize = LARGEST / STEP;
 ///     assert_eq!(blocks.alloc(layout), a);
 ///     blocks.dealloc(a, layout);
 /// }
+/// # Ok::<(), std::alloc::LayoutError>(())
 /// ```
 pub struct SmallBlocks<A> {
     inner: A,
