@@ -892,8 +892,12 @@ fn write_scaling(out: &Path, sc: &Scaling, quick: bool) -> Result<()> {
                 Some(p) => {
                     let _ = write!(
                         md,
-                        " {} | {} ({} blocks) | {:.2} |",
-                        p.swaths, p.method, p.blocks, p.median_ms
+                        " {} | {} ({} {}) | {:.2} |",
+                        p.swaths,
+                        p.method,
+                        p.blocks,
+                        if p.blocks == 1 { "block" } else { "blocks" },
+                        p.median_ms
                     );
                 }
                 None => {

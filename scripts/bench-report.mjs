@@ -15,6 +15,9 @@ const read = (name) => {
   return JSON.parse(readFileSync(path, "utf8"));
 };
 const readText = (name) => readFileSync(join(DIR, name), "utf8");
+// A part written on its own (it keeps its title there) as a section of the report, under the
+// report's own heading: its first line, if a title, is left out.
+const section = (name) => readText(name).replace(/^# [^\n]*\n+/, "");
 
 const quality = read("quality.json").fields;
 const stages = read("stages.json").fields;
@@ -98,7 +101,7 @@ ${rows
 
 ## Stages
 
-${readText("stages.md")}
+${section("stages.md")}
 The stages that run alone, natively (criterion median, \`benches/stages.rs\`), milliseconds: reading, checking and simplifying the field, and, from the finished plan, the route, the path and the GeoJSON text of the decomposition auto chose (once, where the stage clocks above count every candidate auto compares).
 
 | field | ${STAGE_BENCHES.join(" | ")} |
@@ -107,9 +110,7 @@ ${rows.map((r) => `| ${r.name} | ${STAGE_BENCHES.map((st) => f(criterion(r.name,
 
 ## Scaling
 
-${readText("scaling.md")}
-
-![time against area](scaling-area.svg) ![time against swaths](scaling-swaths.svg)
+${section("scaling.md")}
 
 ## Memory and size
 
@@ -119,7 +120,7 @@ ${readText("scaling.md")}
 
 ## Plan quality
 
-${readText("quality.md")}
+${section("quality.md")}
 Pictures of every plan: [plans.md](plans.md).
 `;
 writeFileSync(join(DIR, "report.md"), md);
