@@ -1,6 +1,7 @@
 //! The planner never panics, whatever polygon and options it is given: random star-shaped and
-//! arbitrary (often self-intersecting) rings, tiny to continental sizes, random obstacles and
-//! options. Every call returns a plan or a typed error other than `internal`.
+//! arbitrary (often self-intersecting) rings, tiny to continental sizes, dense smooth outlines
+//! with GNSS-like noise, fields with many small obstacles, random options. Every call returns a
+//! plan or a typed error other than `internal`.
 //!
 //! The regular suite runs a few hundred cases; set PROPTEST_CASES for a long run.
 
@@ -11,6 +12,8 @@ use furrow::{plan_geojson, ErrorCode, PlanOptions};
 use proptest::prelude::*;
 
 mod common;
+
+use common::shapes::{jitter, shape};
 
 fn ring_json(pts: &[(f64, f64)]) -> String {
     let mut s = String::from("[");
@@ -161,6 +164,53 @@ proptest! {
         // Points clustered near (24, 60) at random scales: mostly self-intersecting or degenerate.
         let pts: Vec<(f64, f64)> = pts.iter().map(|(x, y)| (24.0 + x * jitter, 60.0 + y * jitter)).collect();
         let text = format!(r#"{{"type":"Polygon","coordinates":[{}]}}"#, ring_json(&pts));
+        check(&text, &options)?;
+    }
+
+    #[test]
+    fn dense_smooth_outlines(
+        shape in shape(),
+        spacing in prop::sample::select(vec![0.05, 0.2, 0.5, 1.0, 2.0]),
+        noise in prop::sample::select(vec![0.0, 0.01, 0.1, 0.5, 2.0]),
+        seed in any::<u64>(),
+        metric in any::<bool>(),
+        options in options(),
+    ) {
+        let mut points = shape.outline_within(spacing, 3_000.0);
+        jitter(&mut points, noise, seed);
+        let pts: Vec<(f64, f64)> = if metric {
+            points.iter().map(|p| (p.x, p.y)).collect()
+        } else {
+            points.iter().map(|p| (24.05 + p.x / 55_000.0, 60.25 + p.y / 111_000.0)).collect()
+        };
+        let text = format!(r#"{{"type":"Polygon","coordinates":[{}]}}"#, ring_json(&pts));
+        let coordinates = if metric { furrow::field::Coordinates::Metric } else { furrow::field::Coordinates::Wgs84 };
+        check(&text, &PlanOptions { coordinates, ..options })?;
+    }
+
+    #[test]
+    fn many_small_obstacles(
+        radii in prop::collection::vec(100.0..400.0f64, 3..16),
+        obstacles in prop::collection::vec(
+            ((-300.0..300.0f64, -300.0..300.0f64), 0.2..15.0f64, 3usize..9),
+            10..120,
+        ),
+        options in options(),
+    ) {
+        // Poles, trees and ponds anywhere: inside, over the boundary, outside, overlapping.
+        let (lon, lat) = (24.05, 60.25);
+        let mut features = vec![format!(
+            r#"{{"type":"Feature","properties":{{"role":"boundary"}},"geometry":{{"type":"Polygon","coordinates":[{}]}}}}"#,
+            ring_json(&star(lon, lat, &radii))
+        )];
+        for ((dx, dy), r, sides) in obstacles {
+            let (olon, olat) = (lon + dx / 55_000.0, lat + dy / 111_000.0);
+            features.push(format!(
+                r#"{{"type":"Feature","properties":{{"role":"obstacle"}},"geometry":{{"type":"Polygon","coordinates":[{}]}}}}"#,
+                ring_json(&star(olon, olat, &vec![r; sides]))
+            ));
+        }
+        let text = format!(r#"{{"type":"FeatureCollection","features":[{}]}}"#, features.join(","));
         check(&text, &options)?;
     }
 

@@ -4,18 +4,26 @@
 //! doubled vertices, vertices on a straight edge and spikes (a vertex where the line goes out and
 //! straight back). [`clean_ring`] removes those and says what it did; [`find_self_intersection`]
 //! finds where a ring crosses or touches itself.
+//!
+//! Cleaning never changes the field: every vertex removed lies within [`COLLINEAR_M`] of the
+//! ring that is left, measured against the ring as given, and a spike encloses no area.
 
-use crate::geometry::{Extremes, PlanarHypot};
+use crate::geometry::{sleeve_ring, Extremes, PlanarHypot, Sleeve};
 use crate::sort::SharedSort;
 use geo::algorithm::line_intersection::line_intersection;
 use geo::{Coord, Line, LineIntersection};
 
 /// Vertices closer than this (metres) are the same vertex.
 pub const SAME_POINT_M: f64 = 1e-3;
-/// A vertex this close (metres) to the straight line through its neighbours is on that line.
+/// A vertex this close (metres) to the edge that replaces it is on that edge: the most cleaning
+/// moves the outline.
 pub const COLLINEAR_M: f64 = 1e-3;
-/// A vertex whose two edges meet at an angle below this (radians) is a spike.
-pub const SPIKE_ANGLE: f64 = 1e-2;
+
+/// Passes of spike removal: each removes every spike it meets, nested ones included, so a second
+/// is only needed where a spike straddles the ring's first vertex; what a third would find (an
+/// outline that doubles back on itself at several places at once) is left to the check for
+/// self-intersection.
+const SPIKE_PASSES: usize = 3;
 
 /// What [`clean_ring`] repaired.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
@@ -37,6 +45,12 @@ pub struct RingRepairs {
 ///
 /// Returns the open ring (first point not repeated at the end) and what was repaired. The
 /// result may have fewer than 3 points; the caller decides what that means.
+///
+/// A vertex is repeated within [`SAME_POINT_M`] of the last vertex kept; collinear when it lies
+/// within [`COLLINEAR_M`] of the edge between the vertices kept before and after it (the ring as
+/// given, not as thinned, so a dense smooth outline keeps its shape); a spike when the outline
+/// turns back at it and the triangle it makes with its neighbours is thinner than
+/// [`COLLINEAR_M`].
 ///
 /// ```
 /// use furrow::field::ring::clean_ring;
@@ -71,76 +85,71 @@ pub fn clean_ring(ring: &[Coord]) -> (Vec<Coord>, RingRepairs) {
         repairs.was_open = true;
     }
     repairs.distinct = pts.len();
-    // Drop collinear vertices and spikes until none is left; each removal may expose another.
-    loop {
-        let n = pts.len();
-        if n < 3 {
-            break;
-        }
-        let mut keep = Vec::with_capacity(n);
-        let mut removed = false;
-        for i in 0..n {
-            let prev = match keep.last() {
-                Some(&p) => p,
-                None => pts[(i + n - 1) % n],
-            };
-            let v = pts[i];
-            let next = pts[(i + 1) % n];
-            match classify(prev, v, next) {
-                VertexKind::Corner => keep.push(v),
-                VertexKind::Collinear => {
-                    repairs.collinear += 1;
-                    removed = true;
-                }
-                VertexKind::Spike => {
-                    repairs.spikes += 1;
-                    removed = true;
-                }
-                VertexKind::Repeated => {
-                    repairs.repeated += 1;
-                    removed = true;
-                }
-            }
-        }
-        pts = keep;
-        if !removed {
-            break;
-        }
-    }
+    remove_spikes(&mut pts, &mut repairs);
+    let before = pts.len();
+    pts = sleeve_ring(&pts, Sleeve::both(COLLINEAR_M));
+    repairs.collinear += before - pts.len();
+    // An edge that replaced collinear vertices may have made a spike of its end.
+    remove_spikes(&mut pts, &mut repairs);
     (pts, repairs)
 }
 
-enum VertexKind {
-    Corner,
-    Collinear,
-    Spike,
-    Repeated,
+/// Removes spikes (and the repeated vertices their removal leaves) from an open ring, in a few
+/// linear passes.
+fn remove_spikes(pts: &mut Vec<Coord>, repairs: &mut RingRepairs) {
+    for _ in 0..SPIKE_PASSES {
+        let mut kept: Vec<Coord> = Vec::with_capacity(pts.len());
+        for &p in pts.iter() {
+            kept.push(p);
+            drop_spikes_at_end(&mut kept, repairs);
+        }
+        *pts = kept;
+        if !spike_at_start(pts) {
+            return;
+        }
+        // A spike straddles the first vertex: start the next pass half way round.
+        let half = pts.len() / 2;
+        pts.rotate_left(half);
+    }
 }
 
-fn classify(prev: Coord, v: Coord, next: Coord) -> VertexKind {
-    let a = prev - v;
-    let b = next - v;
-    let (la, lb) = (a.x.planar_hypot(a.y), b.x.planar_hypot(b.y));
-    if la < SAME_POINT_M || lb < SAME_POINT_M {
-        return VertexKind::Repeated;
-    }
-    let cross = a.x * b.y - a.y * b.x;
-    let dot = a.x * b.x + a.y * b.y;
-    // Angle between the two edges as seen from v: pi on a straight edge, near 0 at a spike.
-    let angle = cross.abs().atan2(dot);
-    if angle < SPIKE_ANGLE {
-        return VertexKind::Spike;
-    }
-    let base = next - prev;
-    let base_len = base.x.planar_hypot(base.y);
-    if base_len > 0.0 && dot < 0.0 {
-        // Height of v over the line prev-next.
-        let height = ((v.x - prev.x) * base.y - (v.y - prev.y) * base.x).abs() / base_len;
-        if height < COLLINEAR_M {
-            return VertexKind::Collinear;
+/// Removes the last vertices of `kept` while they repeat or the one before the last is a spike.
+fn drop_spikes_at_end(kept: &mut Vec<Coord>, repairs: &mut RingRepairs) {
+    loop {
+        let n = kept.len();
+        if n >= 2 && distance(kept[n - 1], kept[n - 2]) < SAME_POINT_M {
+            kept.pop();
+            repairs.repeated += 1;
+        } else if n >= 3 && is_spike(kept[n - 3], kept[n - 2], kept[n - 1]) {
+            kept.swap_remove(n - 2);
+            repairs.spikes += 1;
+        } else {
+            return;
         }
     }
-    VertexKind::Corner
+}
+
+/// Whether the ring repeats a vertex or has a spike where its end meets its start.
+fn spike_at_start(pts: &[Coord]) -> bool {
+    let n = pts.len();
+    n >= 3
+        && (distance(pts[n - 1], pts[0]) < SAME_POINT_M
+            || is_spike(pts[n - 2], pts[n - 1], pts[0])
+            || is_spike(pts[n - 1], pts[0], pts[1]))
+}
+
+/// Whether the outline turns back at `v` (its two edges less than a right angle apart) along a
+/// triangle thinner than [`COLLINEAR_M`]: out and straight back, enclosing no area.
+fn is_spike(prev: Coord, v: Coord, next: Coord) -> bool {
+    let a = prev - v;
+    let b = next - v;
+    let dot = a.x * b.x + a.y * b.y;
+    if dot <= 0.0 {
+        return false;
+    }
+    let cross = a.x * b.y - a.y * b.x;
+    let longest = a.x.planar_hypot(a.y).greater(b.x.planar_hypot(b.y));
+    cross.abs() < COLLINEAR_M * longest
 }
 
 #[inline]

@@ -1,17 +1,23 @@
 //! Simplifying dense outlines: a boundary recorded by a GNSS receiver driving round the field has
-//! a vertex every metre or so, most of them noise. Douglas-Peucker with a tolerance tied to the
-//! working width (as in the field trials of Zhou et al. 2014, section 3) keeps the shape to a
-//! few centimetres and makes planning time independent of the recorder's sampling rate.
+//! a vertex every metre or so, most of them noise. Removing the vertices that lie within a
+//! tolerance tied to the working width (as in the field trials of Zhou et al. 2014, section 3)
+//! keeps the shape to a few centimetres and makes planning time independent of the recorder's
+//! sampling rate.
+//!
+//! The simplification is one-sided ([`crate::geometry::sleeve`]): the field's boundary only
+//! moves inwards and an obstacle's or prohibited region's outline only outwards (to within the
+//! millimetre by which cleaning may move an outline), so the planned field lies inside the
+//! boundary as given and outside every obstacle as given.
 
-use super::ring::find_self_intersection;
+use super::ring::{find_self_intersection, COLLINEAR_M};
 use super::Field;
 use crate::error::{Warning, WarningCode};
-use crate::geometry::PlanarSimplify;
-use geo::LineString;
+use crate::geometry::{sleeve_ring, Sleeve};
+use geo::{Area, LineString, Polygon};
 
-/// The Douglas-Peucker tolerance for a working width: a sixth of it, between 2 cm and 1 m. A
-/// 6 m implement gets 1 m: about the noise of a DGPS-recorded boundary (the benchmark's
-/// GNSS-traced field keeps 74 of its 600 vertices), and a sixth of a swath at the field edge.
+/// The simplification's tolerance for a working width: a sixth of it, between 2 cm and 1 m. A
+/// 6 m implement gets 1 m: about the noise of a DGPS-recorded boundary, and a sixth of a swath
+/// at the field edge.
 ///
 /// ```
 /// use furrow::field::simplify::tolerance_for_width;
@@ -24,39 +30,72 @@ pub fn tolerance_for_width(width: f64) -> f64 {
     (width / 6.0).clamp(0.02, 1.0)
 }
 
-/// A closed ring simplified by `tolerance` metres, or `None` when simplifying removes nothing or
-/// would make it cross itself or collapse (the ring is then kept as it is).
-pub fn simplify_ring(ring: &LineString, tolerance: f64) -> Option<LineString> {
-    let simplified = ring.planar_simplify(tolerance);
-    let n = simplified.0.len();
-    if n >= ring.0.len() || n < 4 {
+/// Which way an outline may move when it is simplified.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Keep {
+    /// The simplified outline lies inside the given one (a field boundary).
+    Inside,
+    /// The simplified outline encloses the given one (an obstacle, a prohibited region).
+    Enclosing,
+}
+
+/// A closed counter-clockwise ring simplified within `tolerance` metres, moving only as `keep`
+/// says, or `None` when simplifying removes nothing or would make it cross itself or collapse
+/// (the ring is then kept as it is).
+///
+/// Every vertex removed lies within `tolerance` of the new edge that replaces it, on the side
+/// `keep` allows (or within [`COLLINEAR_M`] on the other); the new ring does not cross itself,
+/// so it lies inside the given ring (or encloses it), to within that millimetre.
+///
+/// ```
+/// use furrow::field::simplify::{simplify_ring, Keep};
+/// use geo::{Area, BooleanOps, LineString, Polygon};
+///
+/// // A 100 m square whose southern edge was recorded every metre, wavering 5 cm either way.
+/// let mut points: Vec<(f64, f64)> = (0..100).map(|i| (i as f64, 0.05 * (i as f64).sin())).collect();
+/// points.extend([(100.0, 0.0), (100.0, 100.0), (0.0, 100.0), (0.0, 0.0)]);
+/// let ring = LineString::from(points);
+/// let inside = simplify_ring(&ring, 0.2, Keep::Inside).ok_or("nothing removed")?;
+/// assert!(inside.0.len() < 20);
+/// let (given, simplified) = (Polygon::new(ring, vec![]), Polygon::new(inside, vec![]));
+/// // Nothing outside the square as given (to within a millimetre along its southern edge).
+/// assert!(simplified.difference(&given).unsigned_area() < 1e-3 * 100.0);
+/// assert!(given.unsigned_area() - simplified.unsigned_area() < 0.2 * 100.0);
+/// # Ok::<(), &str>(())
+/// ```
+pub fn simplify_ring(ring: &LineString, tolerance: f64, keep: Keep) -> Option<LineString> {
+    let open = ring.0.get(..ring.0.len().saturating_sub(1))?;
+    // Counter-clockwise: inside is left of every edge, so the vertices removed lie right of the
+    // edges that replace them, or at most as far left as cleaning moves an outline (a parallel
+    // of latitude is a curve a few millimetres deep on the local map: a millimetre keeps its
+    // vertices from counting as corners).
+    let sleeve = match keep {
+        Keep::Inside => Sleeve {
+            left: COLLINEAR_M,
+            right: tolerance,
+        },
+        Keep::Enclosing => Sleeve {
+            left: tolerance,
+            right: COLLINEAR_M,
+        },
+    };
+    let mut simplified = sleeve_ring(open, sleeve);
+    let n = simplified.len();
+    if n >= open.len() || n < 3 || find_self_intersection(&simplified).is_some() {
         return None;
     }
-    // Open ring for the self-intersection check.
-    if find_self_intersection(&simplified.0[..n - 1]).is_some() {
-        return None;
-    }
-    Some(simplified)
+    simplified.push(simplified[0]);
+    Some(LineString::new(simplified))
 }
 
 impl Field {
-    /// Simplifies the boundary, obstacles and prohibited regions by `tolerance` metres, and says
-    /// what changed.
+    /// Simplifies the boundary (inwards), obstacles and prohibited regions (outwards) by
+    /// `tolerance` metres, and says what changed.
     pub fn simplify(&mut self, tolerance: f64) -> Vec<Warning> {
         let mut warnings = Vec::new();
-        let before = self.boundary.exterior().0.len() - 1;
-        if let Some(ring) = simplify_ring(self.boundary.exterior(), tolerance) {
-            let after = ring.0.len() - 1;
-            self.boundary.exterior_mut(|r| *r = ring);
-            warnings.push(
-                Warning::new(
-                    WarningCode::OutlineSimplified,
-                    format!(
-                        "the field boundary was simplified from {before} to {after} points (within {tolerance:.2} m)"
-                    ),
-                )
-                .at_feature(self.feature),
-            );
+        let subject = "the field boundary".to_string();
+        if let Some(w) = simplify_polygon(&mut self.boundary, tolerance, Keep::Inside, &subject) {
+            warnings.push(w.at_feature(self.feature));
         }
         let polygons = self
             .obstacles
@@ -68,29 +107,43 @@ impl Field {
                     .map(|p| (p.subject(), &mut p.polygon, p.feature)),
             );
         for (subject, polygon, feature) in polygons {
-            let before = polygon.exterior().0.len() - 1;
-            if let Some(ring) = simplify_ring(polygon.exterior(), tolerance) {
-                let after = ring.0.len() - 1;
-                polygon.exterior_mut(|r| *r = ring);
-                warnings.push(
-                    Warning::new(
-                        WarningCode::OutlineSimplified,
-                        format!(
-                            "{subject} was simplified from {before} to {after} points (within {tolerance:.2} m)"
-                        ),
-                    )
-                    .at_feature(feature),
-                );
+            if let Some(w) = simplify_polygon(polygon, tolerance, Keep::Enclosing, &subject) {
+                warnings.push(w.at_feature(feature));
             }
         }
         warnings
     }
 }
 
+/// Simplifies a polygon's outer ring in place; the warning saying so, if it changed.
+fn simplify_polygon(
+    polygon: &mut Polygon,
+    tolerance: f64,
+    keep: Keep,
+    subject: &str,
+) -> Option<Warning> {
+    let ring = simplify_ring(polygon.exterior(), tolerance, keep)?;
+    let (before, after) = (polygon.exterior().0.len() - 1, ring.0.len() - 1);
+    let area_before = polygon.unsigned_area();
+    polygon.exterior_mut(|r| *r = ring);
+    let change = (polygon.unsigned_area() - area_before).abs();
+    let (way, more_or_less) = match keep {
+        Keep::Inside => ("inside", "less"),
+        Keep::Enclosing => ("outside", "more"),
+    };
+    Some(Warning::new(
+        WarningCode::OutlineSimplified,
+        format!(
+            "{subject} was simplified from {before} to {after} points, within {tolerance:.2} m {way} the outline as given ({change:.1} m², {:.3} %, {more_or_less})",
+            100.0 * change / area_before.max(f64::MIN_POSITIVE)
+        ),
+    ))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
-    use geo::{Area, Distance, Euclidean, Point};
+    use geo::{BooleanOps, Distance, Euclidean, Point};
 
     /// A 200 x 100 m rectangle recorded every metre with +-5 cm of noise.
     fn noisy_rectangle() -> LineString {
@@ -119,19 +172,44 @@ mod tests {
     #[test]
     fn noise_is_removed_and_the_shape_kept() {
         let ring = noisy_rectangle();
-        let simple = simplify_ring(&ring, 0.3).unwrap();
-        assert!(simple.0.len() <= 12, "{} vertices left", simple.0.len());
-        for c in &ring.0 {
-            let d = Euclidean.distance(&Point(*c), &simple);
-            assert!(d <= 0.3 + 1e-9, "{d}");
+        for keep in [Keep::Inside, Keep::Enclosing] {
+            let simple = simplify_ring(&ring, 0.3, keep).unwrap();
+            // 601 points, 10 cm of noise: one-sided edges end where the noise turns inwards.
+            assert!(simple.0.len() <= 40, "{} vertices left", simple.0.len());
+            for c in &ring.0 {
+                let d = Euclidean.distance(&Point(*c), &simple);
+                assert!(d <= 0.3 + 1e-9, "{d}");
+            }
+            let (given, simple) = (
+                Polygon::new(ring.clone(), vec![]),
+                Polygon::new(simple, vec![]),
+            );
+            let a = simple.unsigned_area();
+            assert!((a - 20_000.0).abs() < 0.01 * 20_000.0);
+            // Outside the outline as given by no more than cleaning moves it: a millimetre.
+            let beyond = match keep {
+                Keep::Inside => simple.difference(&given),
+                Keep::Enclosing => given.difference(&simple),
+            };
+            assert!(
+                beyond.unsigned_area() <= COLLINEAR_M * 600.0,
+                "{}",
+                beyond.unsigned_area()
+            );
+            let within = match keep {
+                Keep::Inside => given.difference(&simple),
+                Keep::Enclosing => simple.difference(&given),
+            };
+            assert!(
+                within.unsigned_area() > 1.0,
+                "{keep:?} moved the outline the wrong way"
+            );
         }
-        let a = geo::Polygon::new(simple, vec![]).unsigned_area();
-        assert!((a - 20_000.0).abs() < 0.01 * 20_000.0);
     }
 
     #[test]
     fn a_clean_ring_is_left_alone() {
         let ring = LineString::from(vec![(0., 0.), (10., 0.), (10., 10.), (0., 10.), (0., 0.)]);
-        assert!(simplify_ring(&ring, 0.3).is_none());
+        assert!(simplify_ring(&ring, 0.3, Keep::Inside).is_none());
     }
 }

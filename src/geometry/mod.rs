@@ -1,6 +1,6 @@
 //! Small geometric helpers shared by the pipeline stages: compass bearings, point-to-segment
 //! distance, the planar `hypot`, `min`, `max` and `round` of the hot loops, Douglas-Peucker
-//! simplification, whether two polygons come within a distance, segments for R-trees, and sets
+//! simplification and sleeve fitting, whether two polygons come within a distance, segments for R-trees, and sets
 //! of parallel lines clipped by polygons (the core of swath generation; one such line limited
 //! to a segment).
 
@@ -12,6 +12,7 @@ pub mod polygon_distance;
 pub mod round;
 pub mod segment_tree;
 pub mod simplify;
+pub mod sleeve;
 
 pub use bearing::{bearing_of, deg_to_bearing, swath_direction, unit_vector};
 pub use bearing_range::{forbids_every_direction, BearingRange};
@@ -21,3 +22,4 @@ pub use polygon_distance::polygons_within;
 pub use round::round_half_away;
 pub use segment_tree::IndexedSegment;
 pub use simplify::PlanarSimplify;
+pub use sleeve::{sleeve_ring, Sleeve};

@@ -1,0 +1,252 @@
+//! Simplifying a closed ring within a sleeve: every vertex removed lies within a stated distance
+//! of the edge that replaces it, on the side or sides allowed, measured against the ring as given
+//! (never against a ring already thinned, so removals cannot cascade).
+//!
+//! The method is Zhao and Saalfeld's sleeve fitting (1997): from a kept vertex, the directions
+//! of an edge that passes every vertex ahead within the sleeve narrow to a cone; the farthest
+//! vertex that lies inside the cone of those before it ends the edge. Each vertex is looked at a
+//! bounded number of times, so the work is linear in the ring's size whatever its shape.
+//!
+//! With a distance on one side only the result lies wholly on the other side of the ring
+//! (provided it does not cross itself): removed vertices are all on one side of their edge, and
+//! the region between a ring's stretch and the edge replacing it is then on that side.
+
+use super::PlanarHypot;
+use geo::Coord;
+
+/// How far a removed vertex may lie from the edge that replaces it, on each side, metres.
+/// Left and right are seen along the ring: for a counter-clockwise ring left is inside.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Sleeve {
+    /// Largest distance left of the new edge.
+    pub left: f64,
+    /// Largest distance right of the new edge.
+    pub right: f64,
+}
+
+impl Sleeve {
+    /// The same distance on both sides.
+    pub fn both(distance: f64) -> Self {
+        Sleeve {
+            left: distance,
+            right: distance,
+        }
+    }
+}
+
+/// Vertices looked at beyond the last one that could end an edge before the edge is ended there:
+/// what keeps the work linear on a ring that winds about within its own sleeve.
+const LOOKAHEAD: usize = 64;
+
+/// The vertices of an open ring (first point not repeated) that the sleeve keeps, in order.
+///
+/// The edges are fitted from the lowest-left vertex (least x, then least y), so where the ring
+/// starts does not matter to which vertices are kept. Every vertex removed lies within the sleeve of the edge between the
+/// kept vertices before and after it, and between their feet on that edge.
+///
+/// ```
+/// use furrow::geometry::sleeve::{sleeve_ring, Sleeve};
+/// use geo::coord;
+///
+/// // A square with a vertex 4 cm outside its southern edge and one 4 cm inside its eastern edge.
+/// let ring = [
+///     coord! { x: 0.0, y: 0.0 },
+///     coord! { x: 5.0, y: -0.04 },
+///     coord! { x: 10.0, y: 0.0 },
+///     coord! { x: 9.96, y: 5.0 },
+///     coord! { x: 10.0, y: 10.0 },
+///     coord! { x: 0.0, y: 10.0 },
+/// ];
+/// assert_eq!(sleeve_ring(&ring, Sleeve::both(0.05)).len(), 4);
+/// // Only the vertex outside may go when the edges must not pass outside any vertex removed.
+/// let inside = sleeve_ring(&ring, Sleeve { left: 0.0, right: 0.05 });
+/// assert_eq!(inside.len(), 5);
+/// assert!(inside.contains(&coord! { x: 9.96, y: 5.0 }));
+/// ```
+pub fn sleeve_ring(ring: &[Coord], sleeve: Sleeve) -> Vec<Coord> {
+    let n = ring.len();
+    if n < 4 {
+        return ring.to_vec();
+    }
+    let start = lowest_left(ring);
+    // The ring from its lowest-left vertex round to the same vertex again.
+    let at = |i: usize| ring[(start + i) % n];
+    let mut kept = vec![start];
+    let mut anchor = 0;
+    while anchor < n {
+        let end = edge_end(&at, anchor, n, sleeve);
+        if end < n {
+            kept.push((start + end) % n);
+        }
+        anchor = end;
+    }
+    // Given back starting where the ring did (at the first vertex kept), so that a ring with
+    // nothing to remove comes back as it was.
+    let first = kept.iter().position(|&i| i < start).unwrap_or(0);
+    kept.rotate_left(first);
+    kept.into_iter().map(|i| ring[i]).collect()
+}
+
+/// The index of the lowest-left vertex: least x, ties to least y (a corner of the convex hull).
+fn lowest_left(ring: &[Coord]) -> usize {
+    let mut best = 0;
+    for (i, p) in ring.iter().enumerate() {
+        let b = ring[best];
+        if p.x < b.x || (p.x == b.x && p.y < b.y) {
+            best = i;
+        }
+    }
+    best
+}
+
+/// The directions an edge from the anchor may take, as angles from the direction to the first
+/// vertex after it: an interval, empty when `lo > hi`.
+struct Cone {
+    base: f64,
+    lo: f64,
+    hi: f64,
+}
+
+impl Cone {
+    /// The distance and angle (from the base) of `p` seen from `a`.
+    fn polar(&self, a: Coord, p: Coord) -> (f64, f64) {
+        let v = p - a;
+        let mut angle = v.y.atan2(v.x) - self.base;
+        if angle > std::f64::consts::PI {
+            angle -= std::f64::consts::TAU;
+        } else if angle <= -std::f64::consts::PI {
+            angle += std::f64::consts::TAU;
+        }
+        (v.x.planar_hypot(v.y), angle)
+    }
+
+    /// Narrows the cone to the directions whose line passes `p` (at `distance` and `angle`)
+    /// within the sleeve: `p` at most `sleeve.left` left of it and `sleeve.right` right of it.
+    fn narrow(&mut self, distance: f64, angle: f64, sleeve: Sleeve) {
+        let reach = |d: f64| {
+            if distance <= d {
+                std::f64::consts::FRAC_PI_2
+            } else {
+                (d / distance).asin()
+            }
+        };
+        self.lo = self.lo.max(angle - reach(sleeve.left));
+        self.hi = self.hi.min(angle + reach(sleeve.right));
+    }
+
+    fn holds(&self, angle: f64) -> bool {
+        self.lo <= angle && angle <= self.hi
+    }
+}
+
+/// Where the edge from vertex `anchor` ends (an index up to `n`, which is vertex 0 again): the
+/// farthest vertex in the cone of the vertices before it and at least as far from the anchor as
+/// any of them.
+fn edge_end(at: &impl Fn(usize) -> Coord, anchor: usize, n: usize, sleeve: Sleeve) -> usize {
+    let a = at(anchor);
+    let first = at(anchor + 1);
+    let d = first - a;
+    let mut cone = Cone {
+        base: d.y.atan2(d.x),
+        lo: f64::NEG_INFINITY,
+        hi: f64::INFINITY,
+    };
+    let mut end = anchor + 1;
+    let mut farthest = 0.0f64;
+    let mut k = anchor + 1;
+    while k < n && k - end <= LOOKAHEAD {
+        // Vertex k lies between the anchor and any end beyond it.
+        let (distance, angle) = cone.polar(a, at(k));
+        cone.narrow(distance, angle, sleeve);
+        farthest = farthest.max(distance);
+        if cone.lo > cone.hi {
+            break;
+        }
+        let (reach, direction) = cone.polar(a, at(k + 1));
+        if cone.holds(direction) && reach >= farthest {
+            end = k + 1;
+        }
+        k += 1;
+    }
+    end
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::point_segment_distance;
+    use geo::coord;
+
+    fn circle(n: usize, radius: f64, start: usize) -> Vec<Coord> {
+        (0..n)
+            .map(|i| {
+                let t = ((i + start) % n) as f64 / n as f64 * std::f64::consts::TAU;
+                coord! { x: radius * t.cos(), y: radius * t.sin() }
+            })
+            .collect()
+    }
+
+    /// Distance of each vertex of `ring` from the kept ring (as a closed polyline).
+    fn worst_distance(ring: &[Coord], kept: &[Coord]) -> f64 {
+        ring.iter()
+            .map(|&p| {
+                (0..kept.len())
+                    .map(|i| point_segment_distance(p, kept[i], kept[(i + 1) % kept.len()]))
+                    .fold(f64::INFINITY, f64::min)
+            })
+            .fold(0.0, f64::max)
+    }
+
+    #[test]
+    fn a_dense_circle_keeps_its_shape_within_the_sleeve() {
+        // 1,000 vertices on a 50 m circle, 31 cm apart: each is 0.24 mm off its neighbours' chord.
+        for start in [0, 1, 333, 999] {
+            let ring = circle(1000, 50.0, start);
+            let kept = sleeve_ring(&ring, Sleeve::both(1e-3));
+            assert!(kept.len() > 100, "{} kept", kept.len());
+            assert!(worst_distance(&ring, &kept) <= 1e-3 + 1e-12);
+        }
+    }
+
+    #[test]
+    fn where_the_ring_starts_does_not_matter() {
+        let kept = sleeve_ring(&circle(500, 50.0, 0), Sleeve::both(0.05));
+        for start in [1, 17, 250, 499] {
+            let mut other = sleeve_ring(&circle(500, 50.0, start), Sleeve::both(0.05));
+            let first = other.iter().position(|p| *p == kept[0]).unwrap();
+            other.rotate_left(first);
+            assert_eq!(other, kept);
+        }
+    }
+
+    #[test]
+    fn one_sided_edges_stay_inside_a_convex_ring() {
+        let ring = circle(2000, 100.0, 7);
+        let kept = sleeve_ring(
+            &ring,
+            Sleeve {
+                left: 0.0,
+                right: 0.2,
+            },
+        );
+        assert!(kept.len() < 200, "{} kept", kept.len());
+        // Every kept vertex is a vertex of the ring, so every edge is a chord: inside the circle.
+        assert!(kept.iter().all(|k| ring.contains(k)));
+        assert!(worst_distance(&ring, &kept) <= 0.2 + 1e-12);
+    }
+
+    #[test]
+    fn a_concave_arc_keeps_its_vertices_on_the_inside_side() {
+        // Clockwise circle: seen along the ring, its inside is on the right.
+        let mut ring = circle(400, 100.0, 0);
+        ring.reverse();
+        let outside_only = sleeve_ring(
+            &ring,
+            Sleeve {
+                left: 0.0,
+                right: 0.5,
+            },
+        );
+        assert_eq!(outside_only.len(), ring.len());
+    }
+}
