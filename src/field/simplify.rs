@@ -17,7 +17,8 @@ use geo::{Area, LineString, Polygon};
 
 /// The simplification's tolerance for a working width: a sixth of it, between 2 cm and 1 m. A
 /// 6 m implement gets 1 m: about the noise of a DGPS-recorded boundary, and a sixth of a swath
-/// at the field edge.
+/// at the field edge. Only vertices nearer than six times the tolerance to both neighbours are
+/// simplified away ([`DENSE_GAPS`]).
 ///
 /// ```
 /// use furrow::field::simplify::tolerance_for_width;
@@ -30,6 +31,11 @@ pub fn tolerance_for_width(width: f64) -> f64 {
     (width / 6.0).clamp(0.02, 1.0)
 }
 
+/// Vertices nearer than this many tolerances (a working width, between 12 cm and 6 m) to both
+/// their neighbours are samples of a recorded outline, and may be simplified away; farther
+/// apart they are the corners of a drawn one, and are kept.
+pub const DENSE_GAPS: f64 = 6.0;
+
 /// Which way an outline may move when it is simplified.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Keep {
@@ -41,7 +47,8 @@ pub enum Keep {
 
 /// A closed counter-clockwise ring simplified within `tolerance` metres, moving only as `keep`
 /// says, or `None` when simplifying removes nothing or would make it cross itself or collapse
-/// (the ring is then kept as it is).
+/// (the ring is then kept as it is). Only vertices nearer than [`DENSE_GAPS`] tolerances to both
+/// neighbours are removed.
 ///
 /// Every vertex removed lies within `tolerance` of the new edge that replaces it, on the side
 /// `keep` allows (or within [`COLLINEAR_M`] on the other); the new ring does not cross itself,
@@ -69,15 +76,14 @@ pub fn simplify_ring(ring: &LineString, tolerance: f64, keep: Keep) -> Option<Li
     // edges that replace them, or at most as far left as cleaning moves an outline (a parallel
     // of latitude is a curve a few millimetres deep on the local map: a millimetre keeps its
     // vertices from counting as corners).
-    let sleeve = match keep {
-        Keep::Inside => Sleeve {
-            left: COLLINEAR_M,
-            right: tolerance,
-        },
-        Keep::Enclosing => Sleeve {
-            left: tolerance,
-            right: COLLINEAR_M,
-        },
+    let (left, right) = match keep {
+        Keep::Inside => (COLLINEAR_M, tolerance),
+        Keep::Enclosing => (tolerance, COLLINEAR_M),
+    };
+    let sleeve = Sleeve {
+        left,
+        right,
+        max_gap: DENSE_GAPS * tolerance,
     };
     let mut simplified = sleeve_ring(open, sleeve);
     let n = simplified.len();

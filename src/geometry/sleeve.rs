@@ -11,25 +11,30 @@
 //! (provided it does not cross itself): removed vertices are all on one side of their edge, and
 //! the region between a ring's stretch and the edge replacing it is then on that side.
 
-use super::PlanarHypot;
+use super::{Extremes, PlanarHypot};
 use geo::Coord;
 
-/// How far a removed vertex may lie from the edge that replaces it, on each side, metres.
-/// Left and right are seen along the ring: for a counter-clockwise ring left is inside.
+/// How far a removed vertex may lie from the edge that replaces it, on each side, metres; and
+/// which vertices may be removed at all. Left and right are seen along the ring: for a
+/// counter-clockwise ring left is inside.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Sleeve {
     /// Largest distance left of the new edge.
     pub left: f64,
     /// Largest distance right of the new edge.
     pub right: f64,
+    /// Only a vertex nearer than this to both its neighbours (as given) may be removed: the
+    /// samples of a recorded outline, not the corners of a drawn one.
+    pub max_gap: f64,
 }
 
 impl Sleeve {
-    /// The same distance on both sides.
+    /// The same distance on both sides, any vertex removable.
     pub fn both(distance: f64) -> Self {
         Sleeve {
             left: distance,
             right: distance,
+            max_gap: f64::INFINITY,
         }
     }
 }
@@ -59,7 +64,7 @@ const LOOKAHEAD: usize = 64;
 /// ];
 /// assert_eq!(sleeve_ring(&ring, Sleeve::both(0.05)).len(), 4);
 /// // Only the vertex outside may go when the edges must not pass outside any vertex removed.
-/// let inside = sleeve_ring(&ring, Sleeve { left: 0.0, right: 0.05 });
+/// let inside = sleeve_ring(&ring, Sleeve { left: 0.0, right: 0.05, max_gap: f64::INFINITY });
 /// assert_eq!(inside.len(), 5);
 /// assert!(inside.contains(&coord! { x: 9.96, y: 5.0 }));
 /// ```
@@ -71,20 +76,31 @@ pub fn sleeve_ring(ring: &[Coord], sleeve: Sleeve) -> Vec<Coord> {
     let start = lowest_left(ring);
     // The ring from its lowest-left vertex round to the same vertex again.
     let at = |i: usize| ring[(start + i) % n];
-    let mut kept = vec![start];
-    let mut anchor = 0;
-    while anchor < n {
-        let end = edge_end(&at, anchor, n, sleeve);
-        if end < n {
-            kept.push((start + end) % n);
-        }
-        anchor = end;
+    let mut ends = vec![0];
+    while let Some(&anchor) = ends.last().filter(|&&a| a < n) {
+        ends.push(edge_end(&at, anchor, n, sleeve));
     }
+    let mut kept: Vec<usize> = ends
+        .into_iter()
+        .filter(|&i| i < n)
+        .map(|i| (start + i) % n)
+        .collect();
     // Given back starting where the ring did (at the first vertex kept), so that a ring with
     // nothing to remove comes back as it was.
     let first = kept.iter().position(|&i| i < start).unwrap_or(0);
     kept.rotate_left(first);
     kept.into_iter().map(|i| ring[i]).collect()
+}
+
+/// Whether vertex `k` is near enough to both its neighbours to be removed.
+fn removable(at: &impl Fn(usize) -> Coord, k: usize, sleeve: Sleeve) -> bool {
+    let p = at(k);
+    let (before, after) = (p - at(k - 1), at(k + 1) - p);
+    before
+        .x
+        .planar_hypot(before.y)
+        .greater(after.x.planar_hypot(after.y))
+        < sleeve.max_gap
 }
 
 /// The index of the lowest-left vertex: least x, ties to least y (a corner of the convex hull).
@@ -156,6 +172,9 @@ fn edge_end(at: &impl Fn(usize) -> Coord, anchor: usize, n: usize, sleeve: Sleev
     let mut k = anchor + 1;
     while k < n && k - end <= LOOKAHEAD {
         // Vertex k lies between the anchor and any end beyond it.
+        if !removable(at, k, sleeve) {
+            break;
+        }
         let (distance, angle) = cone.polar(a, at(k));
         cone.narrow(distance, angle, sleeve);
         farthest = farthest.max(distance);
@@ -227,6 +246,7 @@ mod tests {
             Sleeve {
                 left: 0.0,
                 right: 0.2,
+                max_gap: f64::INFINITY,
             },
         );
         assert!(kept.len() < 200, "{} kept", kept.len());
@@ -245,8 +265,22 @@ mod tests {
             Sleeve {
                 left: 0.0,
                 right: 0.5,
+                max_gap: f64::INFINITY,
             },
         );
         assert_eq!(outside_only.len(), ring.len());
+    }
+
+    #[test]
+    fn only_vertices_near_both_neighbours_are_removed() {
+        // 3.14 m apart: none goes when only vertices nearer than 3 m to their neighbours may.
+        let ring = circle(100, 50.0, 0);
+        let sleeve = Sleeve::both(1.0);
+        assert!(sleeve_ring(&ring, sleeve).len() < 20);
+        let sparse = Sleeve {
+            max_gap: 3.0,
+            ..sleeve
+        };
+        assert_eq!(sleeve_ring(&ring, sparse).len(), 100);
     }
 }
