@@ -11,7 +11,6 @@
 mod corpus;
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use furrow::field::simplify::tolerance_for_width;
 use furrow::field::Field;
 use furrow::path::build_path;
 use furrow::path::turn::Area;
@@ -30,11 +29,11 @@ fn stages(c: &mut Criterion) {
         .collect();
     let mut group = c.benchmark_group("stage-validation");
     for (field, text, _) in &fields {
-        let tolerance = tolerance_for_width(field.options.width);
+        let width = field.options.width;
         group.bench_function(&field.name, |b| {
             b.iter(|| {
                 let read = Field::from_geojson_str_in(black_box(text), field.options.coordinates);
-                read.map(|(mut f, _)| f.simplify(tolerance))
+                read.map(|(mut f, _)| f.simplify(width))
             })
         });
     }

@@ -18,7 +18,6 @@ use crate::direction::{
 };
 use crate::error::{ErrorCode, PlanError, Warning, WarningCode};
 use crate::field::projection::OutputAlong;
-use crate::field::simplify::tolerance_for_width;
 use crate::field::{Field, ProhibitedRegion};
 use crate::geometry::forbids_every_direction;
 use crate::geometry::PlanarHypot;
@@ -175,7 +174,7 @@ pub(crate) fn plan_stages(
     let with_field = options.with_field(&field);
     let options = with_field.as_ref().unwrap_or(options);
     let width = options.width;
-    warnings.extend(field.simplify(tolerance_for_width(width)));
+    warnings.extend(field.simplify(width));
     times.lap(&mut clock, |t| &mut t.validation);
     let forbidden = &options.forbidden_bearings_deg;
     let objective = options.objective.objective();

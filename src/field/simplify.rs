@@ -1,8 +1,9 @@
 //! Simplifying dense outlines: a boundary recorded by a GNSS receiver driving round the field has
-//! a vertex every metre or so, most of them noise. Removing the vertices that lie within a
-//! tolerance tied to the working width (as in the field trials of Zhou et al. 2014, section 3)
-//! keeps the shape to a few centimetres and makes planning time independent of the recorder's
-//! sampling rate.
+//! a vertex every metre or so, many of them noise, and every vertex costs planning time. Dense
+//! outlines are thinned to about one vertex per two working widths of outline, within the least
+//! tolerance that reaches it: from 2 cm up to a sixth of the working width, at most 1 m (as in
+//! the field trials of Zhou et al. 2014, section 3). A clean outline loses next to nothing; a
+//! noisy one loses up to the noise.
 //!
 //! The simplification is one-sided ([`crate::geometry::sleeve`]): the field's boundary only
 //! moves inwards and an obstacle's or prohibited region's outline only outwards (to within the
@@ -13,12 +14,11 @@ use super::ring::{find_self_intersection, COLLINEAR_M};
 use super::Field;
 use crate::error::{Warning, WarningCode};
 use crate::geometry::{sleeve_ring, Sleeve};
-use geo::{Area, LineString, Polygon};
+use geo::{Area, Euclidean, Length, LineString, Polygon};
 
-/// The simplification's tolerance for a working width: a sixth of it, between 2 cm and 1 m. A
-/// 6 m implement gets 1 m: about the noise of a DGPS-recorded boundary, and a sixth of a swath
-/// at the field edge. Only vertices nearer than six times the tolerance to both neighbours are
-/// simplified away ([`DENSE_GAPS`]).
+/// The simplification's largest tolerance for a working width: a sixth of it, between 2 cm and
+/// 1 m. A 6 m implement gets 1 m: about the noise of a DGPS-recorded boundary, and a sixth of a
+/// swath at the field edge.
 ///
 /// ```
 /// use furrow::field::simplify::tolerance_for_width;
@@ -28,13 +28,61 @@ use geo::{Area, LineString, Polygon};
 /// assert_eq!(tolerance_for_width(0.05), 0.02);
 /// ```
 pub fn tolerance_for_width(width: f64) -> f64 {
-    (width / 6.0).clamp(0.02, 1.0)
+    (width / 6.0).clamp(MIN_TOLERANCE_M, 1.0)
 }
 
-/// Vertices nearer than this many tolerances (a working width, between 12 cm and 6 m) to both
-/// their neighbours are samples of a recorded outline, and may be simplified away; farther
-/// apart they are the corners of a drawn one, and are kept.
+/// The first tolerance tried, metres; each next one is twice the last, up to
+/// [`tolerance_for_width`].
+pub const MIN_TOLERANCE_M: f64 = 0.02;
+
+/// An outline is dense when it has more than one vertex per this many working widths of its
+/// length (and more than [`MIN_VERTICES`]); it is simplified until it has no more, or the
+/// tolerance reaches its largest.
+pub const WIDTHS_PER_VERTEX: f64 = 2.0;
+
+/// Outlines of this many vertices or fewer are never simplified.
+pub const MIN_VERTICES: usize = 32;
+
+/// Vertices nearer than this many largest tolerances (a working width, between 12 cm and 6 m)
+/// to both their neighbours are samples of a recorded outline, and may be simplified away;
+/// farther apart they are the corners of a drawn one, and are kept.
 pub const DENSE_GAPS: f64 = 6.0;
+
+/// How far simplification may go for a working width.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Simplification {
+    /// The largest tolerance, metres ([`tolerance_for_width`]).
+    pub max_tolerance: f64,
+    /// The outline length per vertex wanted, metres.
+    pub spacing: f64,
+}
+
+impl Simplification {
+    /// The simplification for a working width.
+    ///
+    /// ```
+    /// use furrow::field::simplify::Simplification;
+    ///
+    /// let s = Simplification::for_width(6.0);
+    /// assert_eq!((s.max_tolerance, s.spacing), (1.0, 12.0));
+    /// ```
+    pub fn for_width(width: f64) -> Self {
+        Simplification {
+            max_tolerance: tolerance_for_width(width),
+            spacing: WIDTHS_PER_VERTEX * width,
+        }
+    }
+
+    /// How many vertices an outline of this length may keep without simplification.
+    fn budget(&self, length: f64) -> usize {
+        let wanted = (length / self.spacing).ceil();
+        if wanted.is_finite() && wanted < usize::MAX as f64 {
+            (wanted as usize).max(MIN_VERTICES)
+        } else {
+            MIN_VERTICES
+        }
+    }
+}
 
 /// Which way an outline may move when it is simplified.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -47,8 +95,8 @@ pub enum Keep {
 
 /// A closed counter-clockwise ring simplified within `tolerance` metres, moving only as `keep`
 /// says, or `None` when simplifying removes nothing or would make it cross itself or collapse
-/// (the ring is then kept as it is). Only vertices nearer than [`DENSE_GAPS`] tolerances to both
-/// neighbours are removed.
+/// (the ring is then kept as it is). Only vertices nearer than `max_gap` to both neighbours are
+/// removed.
 ///
 /// Every vertex removed lies within `tolerance` of the new edge that replaces it, on the side
 /// `keep` allows (or within [`COLLINEAR_M`] on the other); the new ring does not cross itself,
@@ -62,7 +110,7 @@ pub enum Keep {
 /// let mut points: Vec<(f64, f64)> = (0..100).map(|i| (i as f64, 0.05 * (i as f64).sin())).collect();
 /// points.extend([(100.0, 0.0), (100.0, 100.0), (0.0, 100.0), (0.0, 0.0)]);
 /// let ring = LineString::from(points);
-/// let inside = simplify_ring(&ring, 0.2, Keep::Inside).ok_or("nothing removed")?;
+/// let inside = simplify_ring(&ring, 0.2, 2.0, Keep::Inside).ok_or("nothing removed")?;
 /// assert!(inside.0.len() < 20);
 /// let (given, simplified) = (Polygon::new(ring, vec![]), Polygon::new(inside, vec![]));
 /// // Nothing outside the square as given (to within a millimetre along its southern edge).
@@ -70,7 +118,12 @@ pub enum Keep {
 /// assert!(given.unsigned_area() - simplified.unsigned_area() < 0.2 * 100.0);
 /// # Ok::<(), &str>(())
 /// ```
-pub fn simplify_ring(ring: &LineString, tolerance: f64, keep: Keep) -> Option<LineString> {
+pub fn simplify_ring(
+    ring: &LineString,
+    tolerance: f64,
+    max_gap: f64,
+    keep: Keep,
+) -> Option<LineString> {
     let open = ring.0.get(..ring.0.len().saturating_sub(1))?;
     // Counter-clockwise: inside is left of every edge, so the vertices removed lie right of the
     // edges that replace them, or at most as far left as cleaning moves an outline (a parallel
@@ -80,12 +133,14 @@ pub fn simplify_ring(ring: &LineString, tolerance: f64, keep: Keep) -> Option<Li
         Keep::Inside => (COLLINEAR_M, tolerance),
         Keep::Enclosing => (tolerance, COLLINEAR_M),
     };
-    let sleeve = Sleeve {
-        left,
-        right,
-        max_gap: DENSE_GAPS * tolerance,
-    };
-    let mut simplified = sleeve_ring(open, sleeve);
+    let mut simplified = sleeve_ring(
+        open,
+        Sleeve {
+            left,
+            right,
+            max_gap,
+        },
+    );
     let n = simplified.len();
     if n >= open.len() || n < 3 || find_self_intersection(&simplified).is_some() {
         return None;
@@ -94,13 +149,56 @@ pub fn simplify_ring(ring: &LineString, tolerance: f64, keep: Keep) -> Option<Li
     Some(LineString::new(simplified))
 }
 
+/// A dense ring simplified within the least tolerance that brings it to its budget of vertices
+/// (or the largest), and that tolerance; `None` when the ring is not dense or nothing can go.
+///
+/// ```
+/// use furrow::field::simplify::{simplify_dense_ring, Keep, Simplification};
+/// use geo::LineString;
+///
+/// // A 100 m disc recorded every 10 cm: 6,283 vertices where a 6 m implement wants about 53.
+/// let ring: LineString = (0..=6283)
+///     .map(|i| {
+///         let t = i as f64 / 6283.0 * std::f64::consts::TAU;
+///         (100.0 * t.cos(), 100.0 * t.sin())
+///     })
+///     .collect();
+/// let (simplified, tolerance) =
+///     simplify_dense_ring(&ring, &Simplification::for_width(6.0), Keep::Inside).ok_or("kept")?;
+/// assert!(simplified.0.len() <= 54 && tolerance <= 0.32);
+/// # Ok::<(), &str>(())
+/// ```
+pub fn simplify_dense_ring(
+    ring: &LineString,
+    simplification: &Simplification,
+    keep: Keep,
+) -> Option<(LineString, f64)> {
+    let budget = simplification.budget(Euclidean.length(ring));
+    if ring.0.len() <= budget + 1 {
+        return None;
+    }
+    let max_gap = DENSE_GAPS * simplification.max_tolerance;
+    let mut tolerance = MIN_TOLERANCE_M.min(simplification.max_tolerance);
+    loop {
+        let last = tolerance >= simplification.max_tolerance;
+        let simplified = simplify_ring(ring, tolerance, max_gap, keep);
+        match simplified {
+            Some(r) if r.0.len() <= budget + 1 || last => return Some((r, tolerance)),
+            None if last => return None,
+            _ => tolerance = (2.0 * tolerance).min(simplification.max_tolerance),
+        }
+    }
+}
+
 impl Field {
-    /// Simplifies the boundary (inwards), obstacles and prohibited regions (outwards) by
-    /// `tolerance` metres, and says what changed.
-    pub fn simplify(&mut self, tolerance: f64) -> Vec<Warning> {
+    /// Simplifies the dense outlines of the boundary (inwards), obstacles and prohibited regions
+    /// (outwards) for a working width, and says what changed.
+    pub fn simplify(&mut self, width: f64) -> Vec<Warning> {
+        let simplification = Simplification::for_width(width);
         let mut warnings = Vec::new();
         let subject = "the field boundary".to_string();
-        if let Some(w) = simplify_polygon(&mut self.boundary, tolerance, Keep::Inside, &subject) {
+        let boundary = &mut self.boundary;
+        if let Some(w) = simplify_polygon(boundary, &simplification, Keep::Inside, &subject) {
             warnings.push(w.at_feature(self.feature));
         }
         let polygons = self
@@ -113,7 +211,8 @@ impl Field {
                     .map(|p| (p.subject(), &mut p.polygon, p.feature)),
             );
         for (subject, polygon, feature) in polygons {
-            if let Some(w) = simplify_polygon(polygon, tolerance, Keep::Enclosing, &subject) {
+            let keep = Keep::Enclosing;
+            if let Some(w) = simplify_polygon(polygon, &simplification, keep, &subject) {
                 warnings.push(w.at_feature(feature));
             }
         }
@@ -124,11 +223,11 @@ impl Field {
 /// Simplifies a polygon's outer ring in place; the warning saying so, if it changed.
 fn simplify_polygon(
     polygon: &mut Polygon,
-    tolerance: f64,
+    simplification: &Simplification,
     keep: Keep,
     subject: &str,
 ) -> Option<Warning> {
-    let ring = simplify_ring(polygon.exterior(), tolerance, keep)?;
+    let (ring, tolerance) = simplify_dense_ring(polygon.exterior(), simplification, keep)?;
     let (before, after) = (polygon.exterior().0.len() - 1, ring.0.len() - 1);
     let area_before = polygon.unsigned_area();
     polygon.exterior_mut(|r| *r = ring);
@@ -179,7 +278,7 @@ mod tests {
     fn noise_is_removed_and_the_shape_kept() {
         let ring = noisy_rectangle();
         for keep in [Keep::Inside, Keep::Enclosing] {
-            let simple = simplify_ring(&ring, 0.3, keep).unwrap();
+            let simple = simplify_ring(&ring, 0.3, 2.0, keep).unwrap();
             // 601 points, 10 cm of noise: one-sided edges end where the noise turns inwards.
             assert!(simple.0.len() <= 40, "{} vertices left", simple.0.len());
             for c in &ring.0 {
@@ -214,8 +313,43 @@ mod tests {
     }
 
     #[test]
+    fn a_clean_dense_outline_loses_next_to_nothing() {
+        // A 4 ha disc as a register draws it, a vertex every 50 cm: simplified for a 6 m
+        // implement to its budget of vertices, at the least tolerance that reaches it.
+        let n = 1418;
+        let ring: LineString = (0..=n)
+            .map(|i| {
+                let t = f64::from(i) / f64::from(n) * std::f64::consts::TAU;
+                (112.8 * t.cos(), 112.8 * t.sin())
+            })
+            .collect();
+        let simplification = Simplification::for_width(6.0);
+        let (simple, tolerance) =
+            simplify_dense_ring(&ring, &simplification, Keep::Inside).unwrap();
+        assert!(simple.0.len() <= 61, "{} vertices", simple.0.len());
+        assert!(tolerance < simplification.max_tolerance, "{tolerance}");
+        let (a, b) = (
+            Polygon::new(ring, vec![]).unsigned_area(),
+            Polygon::new(simple, vec![]).unsigned_area(),
+        );
+        assert!(a - b < 2e-3 * a, "{} % lost", 100.0 * (a - b) / a);
+    }
+
+    #[test]
+    fn a_sparse_outline_is_not_simplified() {
+        let ring: LineString = (0..=20)
+            .map(|i| {
+                let t = f64::from(i) / 20.0 * std::f64::consts::TAU;
+                (100.0 * t.cos(), 100.0 * t.sin())
+            })
+            .collect();
+        let simplification = Simplification::for_width(6.0);
+        assert!(simplify_dense_ring(&ring, &simplification, Keep::Inside).is_none());
+    }
+
+    #[test]
     fn a_clean_ring_is_left_alone() {
         let ring = LineString::from(vec![(0., 0.), (10., 0.), (10., 10.), (0., 10.), (0., 0.)]);
-        assert!(simplify_ring(&ring, 0.3, Keep::Inside).is_none());
+        assert!(simplify_ring(&ring, 0.3, 2.0, Keep::Inside).is_none());
     }
 }
