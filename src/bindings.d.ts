@@ -143,7 +143,9 @@ export interface PlanOptions {
   turningSpeed?: number;
   /**
    * Driving directions that may not be used anywhere, as `[from, to]` compass bearings in degrees
-   * (clockwise from `from` to `to`; a range forbids the reverse directions too). Default none.
+   * (clockwise from `from` to `to`; a range forbids the reverse directions too, so one 180
+   * degrees wide or more, such as `[0, 360]`, forbids every direction: `no_allowed_direction`).
+   * Default none.
    */
   forbiddenBearings?: [number, number][];
   /** Swath pieces shorter than this (metres) are left to the headland. Default: one width. */

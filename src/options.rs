@@ -690,6 +690,12 @@ mod tests {
         let e = PlanOptions::from_json_str(r#"{"forbiddenBearings": [[0, 90], [80, 185]]}"#)
             .unwrap_err();
         assert_eq!(e.code, ErrorCode::NoAllowedDirection);
+        // A range all the way round forbids every direction too.
+        for full in ["[[0, 360]]", "[[-90, 270]]", "[[45, 405]]"] {
+            let e = PlanOptions::from_json_str(&format!(r#"{{"forbiddenBearings": {full}}}"#))
+                .unwrap_err();
+            assert_eq!(e.code, ErrorCode::NoAllowedDirection, "{full}");
+        }
         let e = PlanOptions::from_json_str(r#"{"forbiddenBearings": [[0, 90, 4]]}"#).unwrap_err();
         assert_eq!(e.code, ErrorCode::InvalidOption);
     }

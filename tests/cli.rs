@@ -25,6 +25,41 @@ fn field(name: &str) -> String {
     fields_dir().join(name).display().to_string()
 }
 
+/// Runs the planner on `input` given on standard input (`-`).
+fn run_on(input: &[u8], args: &[&str]) -> Output {
+    use std::io::Write;
+    let mut child = plan_cli()
+        .arg("-")
+        .args(args)
+        .stdin(std::process::Stdio::piped())
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("spawns");
+    let mut stdin = child.stdin.take().expect("stdin");
+    // The planner may refuse before reading everything: a broken pipe is no failure here.
+    let _ = stdin.write_all(input);
+    drop(stdin);
+    child.wait_with_output().expect("finishes")
+}
+
+/// The code of the one JSON line on standard error.
+fn error_code(out: &Output) -> String {
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(stderr.lines().count(), 1, "{stderr}");
+    let e: serde_json::Value = serde_json::from_str(&stderr).expect("a JSON line");
+    e["code"].as_str().expect("code").to_string()
+}
+
+/// A 300 m by 150 m rectangle at 60.25 N, its corner at 24.05 E.
+fn rectangle_300_by_150() -> String {
+    // 300 m of longitude and 150 m of latitude there (the planner's projection gives the same).
+    let (east, north) = (24.055430963107863, 60.25134746676249);
+    format!(
+        r#"{{"type":"Polygon","coordinates":[[[24.05,60.25],[{east},60.25],[{east},{north}],[24.05,{north}],[24.05,60.25]]]}}"#
+    )
+}
+
 #[test]
 fn plans_the_rectangle_with_flags() {
     let out = run(&[
@@ -314,4 +349,27 @@ fn a_field_saved_with_an_entrance_and_ab_line_plans_with_them() {
     let plan: serde_json::Value = serde_json::from_slice(&out.stdout).expect("a plan");
     assert_eq!(plan["summary"]["direction"]["mode"], "fixed");
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn forbidden_bearings_all_the_way_round_forbid_every_direction() {
+    let field = rectangle_300_by_150();
+    let out = run_on(
+        field.as_bytes(),
+        &["--forbidden-bearings", "[[0,90]]", "--summary"],
+    );
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    for all in ["[[0,180]]", "[[0,360]]", "[[-90,270]]", "[[0,720]]"] {
+        let out = run_on(
+            field.as_bytes(),
+            &["--forbidden-bearings", all, "--summary"],
+        );
+        assert_eq!(out.status.code(), Some(2), "{all}");
+        assert_eq!(error_code(&out), "no_allowed_direction", "{all}");
+        assert!(out.stdout.is_empty());
+    }
 }

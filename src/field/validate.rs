@@ -809,6 +809,25 @@ mod tests {
     }
 
     #[test]
+    fn a_prohibited_region_forbidding_every_direction_is_refused() {
+        let region = r#"[[24.0505,60.2502],[24.0508,60.2502],[24.0508,60.2504],[24.0505,60.2504],[24.0505,60.2502]]"#;
+        let fc = |ranges: &str| {
+            format!(
+                r#"{{"type":"FeatureCollection","features":[
+                {{"type":"Feature","properties":{{"role":"boundary"}},"geometry":{{"type":"Polygon","coordinates":[{SQUARE}]}}}},
+                {{"type":"Feature","properties":{{"role":"prohibited","forbidden_bearings_deg":{ranges}}},"geometry":{{"type":"Polygon","coordinates":[{region}]}}}}]}}"#
+            )
+        };
+        let (f, _) = field(&fc("[[0, 90]]")).unwrap();
+        assert_eq!(f.prohibited.len(), 1);
+        for all in ["[[0, 180]]", "[[0, 360]]", "[[-180, 180]]"] {
+            let e = field(&fc(all)).unwrap_err();
+            assert_eq!(e.code, ErrorCode::NoAllowedDirection, "{all}");
+            assert_eq!(e.feature, Some(1));
+        }
+    }
+
+    #[test]
     fn a_field_more_than_40_km_across_is_refused() {
         let text = r#"{"type":"Polygon","coordinates":[[[24,60],[25,60],[25,60.3],[24,60]]]}"#;
         assert_eq!(field(text).unwrap_err().code, ErrorCode::FieldTooLarge);

@@ -30,9 +30,15 @@ impl From<BearingRange> for [f64; 2] {
 }
 
 impl BearingRange {
-    /// Width of the range, degrees, in `[0, 360)`.
+    /// Width of the range, degrees, in `[0, 360]`: a range whose end lies 360 degrees or more
+    /// clockwise of its start (`[0, 360]`, `[-90, 270]`) goes all the way round.
     fn width_deg(&self) -> f64 {
-        (self.to_deg - self.from_deg).rem_euclid(360.0)
+        let span = self.to_deg - self.from_deg;
+        if span >= 360.0 {
+            360.0
+        } else {
+            span.rem_euclid(360.0)
+        }
     }
 
     /// Whether driving along `bearing` (compass radians), either way, is forbidden.
@@ -71,6 +77,7 @@ impl BearingRange {
 /// assert!(forbids_every_direction(&[r(0.0, 100.0), r(90.0, 180.0)]));
 /// assert!(!forbids_every_direction(&[r(0.0, 100.0), r(101.0, 179.0)]));
 /// assert!(forbids_every_direction(&[r(300.0, 130.0)])); // 190 degrees wide
+/// assert!(forbids_every_direction(&[r(0.0, 360.0)])); // all the way round
 /// ```
 pub fn forbids_every_direction(ranges: &[BearingRange]) -> bool {
     // Intervals on the circle of swath directions [0, 180), unrolled so none wraps.
@@ -128,6 +135,31 @@ mod tests {
         }
         for deg in [19.0, 71.0, 110.0, 199.0, 251.0] {
             assert!(!r.forbids(f64::to_radians(deg)), "{deg}");
+        }
+    }
+
+    #[test]
+    fn a_range_all_the_way_round_forbids_everything() {
+        let r = |a, b| BearingRange {
+            from_deg: a,
+            to_deg: b,
+        };
+        for full in [
+            r(0.0, 360.0),
+            r(-90.0, 270.0),
+            r(10.0, 370.0),
+            r(0.0, 720.5),
+        ] {
+            assert!(forbids_every_direction(&[full]), "{full:?}");
+            for deg in [0.0, 45.0, 90.0, 179.0, 271.0] {
+                assert!(full.forbids(f64::to_radians(deg)), "{full:?} {deg}");
+            }
+        }
+        // Start and end at the same bearing, without going round: that bearing alone.
+        for single in [r(10.0, 10.0), r(370.0, 10.0)] {
+            assert!(!forbids_every_direction(&[single]), "{single:?}");
+            assert!(single.forbids(f64::to_radians(10.0)));
+            assert!(!single.forbids(f64::to_radians(90.0)));
         }
     }
 
