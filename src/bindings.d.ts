@@ -137,9 +137,9 @@ export interface PlanOptions {
    * to its second. Default 0 for a line (it is a track), half a width for an edge.
    */
   referenceOffset?: number | null;
-  /** Speed while working, km/h, for the estimated operation time. Default 8. */
+  /** Speed while working, km/h (0.1 to 60), for the estimated operation time. Default 8. */
   workingSpeed?: number;
-  /** Speed while turning, km/h. Default 5. */
+  /** Speed while turning, km/h (0.1 to 60). Default 5. */
   turningSpeed?: number;
   /**
    * Driving directions that may not be used anywhere, as `[from, to]` compass bearings in degrees

@@ -346,6 +346,8 @@ pub const MIN_WIDTH_M: f64 = 0.1;
 pub const MAX_HEADLAND_PASSES: u32 = 50;
 /// Largest turning radius accepted, metres.
 pub const MAX_TURN_RADIUS_M: f64 = 200.0;
+/// Smallest working or turning speed accepted, km/h: slower, the times of a plan run to years.
+pub const MIN_SPEED_KMH: f64 = 0.1;
 /// Largest working or turning speed accepted, km/h.
 pub const MAX_SPEED_KMH: f64 = 60.0;
 
@@ -434,11 +436,11 @@ impl PlanOptions {
             ("workingSpeed", self.working_speed_kmh),
             ("turningSpeed", self.turning_speed_kmh),
         ] {
-            if !(v.is_finite() && v > 0.0 && v <= MAX_SPEED_KMH) {
+            if !(v.is_finite() && (MIN_SPEED_KMH..=MAX_SPEED_KMH).contains(&v)) {
                 return out_of_range(
                     name,
                     format!("{v}"),
-                    &format!("more than 0 and at most {MAX_SPEED_KMH} km/h"),
+                    &format!("between {MIN_SPEED_KMH} and {MAX_SPEED_KMH} km/h"),
                 );
             }
         }
@@ -673,6 +675,9 @@ mod tests {
             r#"{"edgePasses": [{"edge": 0, "passes": 99}]}"#,
             r#"{"searchStep": 0}"#,
             r#"{"workingSpeed": 0}"#,
+            r#"{"workingSpeed": 1e-320}"#,
+            r#"{"workingSpeed": 0.09}"#,
+            r#"{"turningSpeed": 1e-300}"#,
             r#"{"turningSpeed": 100}"#,
         ] {
             let e = PlanOptions::from_json_str(text).unwrap_err();
@@ -727,6 +732,19 @@ mod tests {
                 "{bad}"
             );
         }
+    }
+
+    #[test]
+    fn speeds_at_the_ends_of_their_range_are_accepted() {
+        for text in [
+            r#"{"workingSpeed": 0.1, "turningSpeed": 0.1}"#,
+            r#"{"workingSpeed": 60, "turningSpeed": 60}"#,
+        ] {
+            PlanOptions::from_json_str(text).unwrap();
+        }
+        let e = PlanOptions::from_json_str(r#"{"turningSpeed": 0.01}"#).unwrap_err();
+        assert!(e.message.contains("turningSpeed"), "{}", e.message);
+        assert!(e.message.contains("between 0.1 and 60"), "{}", e.message);
     }
 
     #[test]
