@@ -134,7 +134,8 @@ export interface PlanOptions {
   referenceEdge?: number | null;
   /**
    * Shift of the swath grid from the reference, metres, to the right looking from its first point
-   * to its second. Default 0 for a line (it is a track), half a width for an edge.
+   * to its second. Default 0 for a line (it is a track), half a width for an edge. The grid
+   * repeats every width: only what is left after whole widths counts.
    */
   referenceOffset?: number | null;
   /** Speed while working, km/h (0.1 to 60), for the estimated operation time. Default 8. */

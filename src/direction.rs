@@ -615,7 +615,9 @@ pub fn search_field(
 
 /// The swath direction and line placement of a reference: an AB line (in local metres) or
 /// boundary edge `edge` of the outer ring as drawn, shifted by `offset_m` to the right looking
-/// along it (default 0 for a line, half a width for an edge).
+/// along it (default 0 for a line, half a width for an edge). The grid repeats every width, so
+/// only the offset's remainder after whole widths counts: it is taken exactly (an offset under
+/// one width is used as given), and an offset of 1e17 m places the grid as its remainder does.
 ///
 /// ```
 /// use furrow::direction::reference_direction;
@@ -686,7 +688,9 @@ pub fn reference_direction(
     // side when a→b runs the swath direction, the other when it runs against it.
     let same_way = (driving - bearing).abs() < 1e-9;
     let right = if same_way { 1.0 } else { -1.0 };
-    let across = frame.project(a).0 + right * offset_m.unwrap_or(default_offset);
+    // `%` on floats is exact; without it a huge offset would swallow the line's position.
+    let offset = offset_m.unwrap_or(default_offset) % width;
+    let across = frame.project(a).0 + right * offset;
     Ok((bearing, LinePlacement::Aligned { across }))
 }
 
@@ -747,6 +751,28 @@ mod tests {
         let rule = DirectionRule::LongestEdge { tolerance_m: 1.0 };
         let b = choose_bearing(&f, rule, &forbidden).unwrap().to_degrees();
         assert!((b - 100.0).abs() < 0.01, "{b}");
+    }
+
+    #[test]
+    fn reference_offsets_count_modulo_the_width() {
+        let line = Some([coord! { x: 10., y: 0. }, coord! { x: 10., y: 50. }]);
+        let across = |offset: f64| {
+            let (_, placement) =
+                reference_direction(line, None, &[], Some(offset), 6.0, &[]).unwrap();
+            match placement {
+                LinePlacement::Aligned { across } => across,
+                LinePlacement::FromEdge => panic!("a reference aligns the grid"),
+            }
+        };
+        // Under one width the offset is used as given.
+        assert_eq!(across(3.0), 13.0);
+        assert_eq!(across(-3.0), 7.0);
+        // 10^17 = 6 * 16666666666666666 + 4, in integers.
+        assert_eq!(100_000_000_000_000_000u64 % 6, 4);
+        assert_eq!(across(1e17), across(4.0));
+        assert_eq!(across(1e17), 14.0);
+        assert_eq!(across(-1e17), 6.0);
+        assert_eq!(across(6.0 * 1000.0 + 1.5), 11.5);
     }
 
     #[test]
