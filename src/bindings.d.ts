@@ -172,9 +172,15 @@ export interface PlanOptions {
    * permutation of 0..m such as `[0, 2, 1, 3]`. Needed with `pattern: "custom"`.
    */
   customOrder?: number[];
-  /** Where the machine enters the field, in the input's coordinates: the route starts there. */
+  /**
+   * Where the machine enters the field, in the input's coordinates, within 10 km of the
+   * boundary: the route starts there.
+   */
   entrance?: Position | null;
-  /** Where the machine leaves the field, in the input's coordinates: the route ends there. */
+  /**
+   * Where the machine leaves the field, in the input's coordinates, within 10 km of the
+   * boundary: the route ends there.
+   */
   exit?: Position | null;
   /** Whether the machine may reverse in turns (three-point turns, Reeds-Shepp paths). Default false. */
   reverse?: boolean;

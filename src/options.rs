@@ -4,6 +4,7 @@
 use crate::decompose::Decomposition;
 use crate::direction::{DirectionMode, SearchMethod};
 use crate::error::{ErrorCode, PlanError};
+use crate::field::place::{place_problem, range_problem, MAX_PLACE_DISTANCE_M};
 use crate::field::Coordinates;
 use crate::geometry::{forbids_every_direction, BearingRange};
 use crate::headland::{EdgePasses, HeadlandMode, HeadlandOrder};
@@ -111,10 +112,12 @@ pub struct PlanOptions {
     /// The custom pattern: a permutation of `0..m`, the order in which each group of `m`
     /// neighbouring swaths is worked (e.g. `[0, 2, 1, 3]`).
     pub custom_order: Vec<u32>,
-    /// Where the machine enters the field, in the input's coordinates: the route starts there
-    /// and reaches the first swath along the headland.
+    /// Where the machine enters the field, in the input's coordinates, within
+    /// [`MAX_PLACE_DISTANCE_M`] of the boundary: the route starts there and reaches the first
+    /// swath along the headland.
     pub entrance: Option<[f64; 2]>,
-    /// Where the machine leaves the field, in the input's coordinates: the route ends there.
+    /// Where the machine leaves the field, in the input's coordinates, within
+    /// [`MAX_PLACE_DISTANCE_M`] of the boundary: the route ends there.
     /// Without it, the route ends where the work ends.
     pub exit: Option<[f64; 2]>,
     /// Whether the machine may reverse in turns (three-point turns, Reeds-Shepp paths).
@@ -163,6 +166,19 @@ impl Default for PlanOptions {
             sample_spacing: 0.5,
         }
     }
+}
+
+/// What an `entrance` or `exit` option must be, for its error message.
+fn place_wanted(name: &str, coordinates: Coordinates) -> String {
+    let position = match coordinates {
+        Coordinates::Wgs84 => "[longitude, latitude]",
+        Coordinates::Metric => "[x, y] in the field's metres",
+    };
+    let act = if name == "exit" { "leaves" } else { "enters" };
+    format!(
+        "the {position} where the machine {act} the field, within {} km of its boundary",
+        MAX_PLACE_DISTANCE_M / 1000.0
+    )
 }
 
 /// The largest `curvatureRate` accepted, 1/m²: beyond it the clothoids are shorter than a
@@ -311,12 +327,12 @@ pub const OPTION_DOCS: &[(&str, &str, &str)] = &[
     (
         "entrance",
         "[x,y]",
-        "where the machine enters the field, in the input's coordinates: the route starts there (default: at the first swath)",
+        "where the machine enters the field, in the input's coordinates, within 10 km of the boundary: the route starts there (default: at the first swath)",
     ),
     (
         "exit",
         "[x,y]",
-        "where the machine leaves the field, in the input's coordinates: the route ends there (default: where the work ends)",
+        "where the machine leaves the field, in the input's coordinates, within 10 km of the boundary: the route ends there (default: where the work ends)",
     ),
     (
         "reverse",
@@ -537,14 +553,56 @@ impl PlanOptions {
                 "option `pattern` is `custom` but `customOrder` is empty; give the order of a group of swaths, such as [0, 2, 1, 3]",
             ));
         }
-        for (name, point) in [("entrance", self.entrance), ("exit", self.exit)] {
-            if let Some(p) = point {
-                if p.iter().any(|v| !v.is_finite()) {
-                    return out_of_range(name, format!("{p:?}"), "a point of finite coordinates");
-                }
+        for (name, point) in self.places() {
+            if let Some(problem) = range_problem(point, self.coordinates) {
+                return Err(PlanError::new(
+                    ErrorCode::OptionOutOfRange,
+                    format!(
+                        "option `{name}` is {point:?}: {problem}; give {}",
+                        place_wanted(name, self.coordinates)
+                    ),
+                ));
             }
         }
         Ok(())
+    }
+
+    /// Checks that the entrance and exit the options give lie near `field`: within
+    /// [`MAX_PLACE_DISTANCE_M`] of its boundary ([`validate`](Self::validate) checks the rest).
+    ///
+    /// ```
+    /// use furrow::{field::Field, ErrorCode, PlanOptions};
+    ///
+    /// let (field, _) = Field::from_geojson_str(r#"{"type": "Polygon", "coordinates": [[[24.05, 60.25],
+    ///     [24.056, 60.25], [24.056, 60.252], [24.05, 60.252], [24.05, 60.25]]]}"#)?;
+    /// let at_the_gate = PlanOptions { entrance: Some([24.056, 60.2505]), ..Default::default() };
+    /// at_the_gate.check_places(&field)?;
+    /// let in_town = PlanOptions { entrance: Some([24.94, 60.17]), ..Default::default() };
+    /// assert_eq!(in_town.check_places(&field).unwrap_err().code, ErrorCode::OptionOutOfRange);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn check_places(&self, field: &crate::field::Field) -> Result<(), PlanError> {
+        for (name, point) in self.places() {
+            if let Some(problem) =
+                place_problem(point, self.coordinates, &field.boundary, &field.frame)
+            {
+                return Err(PlanError::new(
+                    ErrorCode::OptionOutOfRange,
+                    format!(
+                        "option `{name}` is {point:?}: {problem}; give {}",
+                        place_wanted(name, self.coordinates)
+                    ),
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// The entrance and exit given, with their options' names.
+    fn places(&self) -> impl Iterator<Item = (&'static str, [f64; 2])> {
+        [("entrance", self.entrance), ("exit", self.exit)]
+            .into_iter()
+            .filter_map(|(name, p)| p.map(|p| (name, p)))
     }
 
     /// Reads options from JSON text (camelCase keys), e.g. from a command line or a file.

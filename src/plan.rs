@@ -171,6 +171,7 @@ pub(crate) fn plan_stages(
     let mut times = StageTimes::default();
     let mut clock = Instant::now();
     options.validate()?;
+    options.check_places(&field)?;
     let with_field = options.with_field(&field);
     let options = with_field.as_ref().unwrap_or(options);
     let width = options.width;

@@ -373,3 +373,18 @@ fn forbidden_bearings_all_the_way_round_forbid_every_direction() {
         assert!(out.stdout.is_empty());
     }
 }
+
+#[test]
+fn options_past_any_sense_exit_2() {
+    let field = rectangle_300_by_150();
+    for (flag, value) in [
+        ("--entrance", "[1e300,1e300]"),
+        ("--exit", "[24.05,60.45]"),
+        ("--working-speed", "1e-320"),
+        ("--turning-speed", "0.01"),
+    ] {
+        let out = run_on(field.as_bytes(), &[flag, value, "--summary"]);
+        assert_eq!(out.status.code(), Some(2), "{flag} {value}");
+        assert_eq!(error_code(&out), "option_out_of_range", "{flag} {value}");
+    }
+}

@@ -40,3 +40,61 @@ fn a_reference_offset_counts_modulo_the_width() {
         );
     }
 }
+
+/// The code and message of the error planning the rectangle with `options`.
+fn refused(options: &PlanOptions) -> (ErrorCode, String) {
+    let e = plan_geojson(RECTANGLE, options).expect_err("refused");
+    (e.code, e.message)
+}
+
+#[test]
+fn an_entrance_or_exit_must_be_a_place_near_the_field() {
+    // The rectangle's north edge is at 60.25134746676249 N; a degree of latitude there is
+    // 111.42 km (meridian arc of the WGS84 ellipsoid at 60.25 N): 9 km is 0.0808 degrees,
+    // 11 km 0.0987.
+    let north = 60.25134746676249;
+    let near = [24.052, north + 0.0808];
+    let far = [24.052, north + 0.0987];
+    for name in ["entrance", "exit"] {
+        let with = |p: [f64; 2]| {
+            let mut o = PlanOptions::default();
+            *(if name == "entrance" {
+                &mut o.entrance
+            } else {
+                &mut o.exit
+            }) = Some(p);
+            o
+        };
+        let plan = plan_geojson(RECTANGLE, &with(near)).unwrap_or_else(|e| panic!("{e}"));
+        assert!(plan.summary.connection_distance_m > 9000.0);
+        for (p, says) in [
+            (far, "km from the field boundary"),
+            ([1e300, 1e300], "longitude"),
+            ([24.05, 91.0], "latitude"),
+            ([-155.95, -60.25], "km from the field boundary"),
+        ] {
+            let (code, message) = refused(&with(p));
+            assert_eq!(code, ErrorCode::OptionOutOfRange, "{name} {p:?}");
+            assert!(
+                message.contains(&format!("`{name}`")) && message.contains(says),
+                "{message}"
+            );
+            assert!(
+                message.contains("within 10 km"),
+                "what to change: {message}"
+            );
+        }
+    }
+    // In metres: within the metric frame's range, and near the field.
+    let metric = |p: [f64; 2]| PlanOptions {
+        coordinates: furrow::field::Coordinates::Metric,
+        entrance: Some(p),
+        ..PlanOptions::default()
+    };
+    let square = r#"{"type":"Polygon","coordinates":[[[0,0],[300,0],[300,150],[0,150],[0,0]]]}"#;
+    plan_geojson(square, &metric([300.0 + 9_000.0, 75.0])).expect("9 km east");
+    for p in [[300.0 + 11_000.0, 75.0], [1e300, 0.0], [0.0, -1e8]] {
+        let e = plan_geojson(square, &metric(p)).expect_err("refused");
+        assert_eq!(e.code, ErrorCode::OptionOutOfRange, "{p:?}");
+    }
+}

@@ -53,6 +53,8 @@ pub struct InputFeatures {
     pub ignored: Vec<(usize, String)>,
     /// The first Point with `role: "entrance"`: where the machine enters the field.
     pub entrance: Option<[f64; 2]>,
+    /// The index of the entrance's feature.
+    pub entrance_feature: Option<usize>,
     /// The first LineString with `role: "reference_line"` (its first and last positions): an AB
     /// line for the swaths to run along.
     pub reference_line: Option<[[f64; 2]; 2]>,
@@ -321,7 +323,10 @@ fn collect_extra(i: usize, role: &str, geometry: Option<&RawObject>, out: &mut I
     let coords = geometry.and_then(|g| g.coordinates.as_ref());
     match (role, kind, coords) {
         ("entrance", Some("Point"), Some(c)) => match position(c) {
-            Some(p) if out.entrance.is_none() => out.entrance = Some(p),
+            Some(p) if out.entrance.is_none() => {
+                out.entrance = Some(p);
+                out.entrance_feature = Some(i);
+            }
             Some(_) => out
                 .ignored
                 .push((i, "the field has an entrance already".into())),
@@ -529,6 +534,7 @@ mod tests {
         let f = parse_str(text).expect("parses");
         assert_eq!(f.polygons.len(), 1, "the extras are not polygons");
         assert_eq!(f.entrance, Some([10.0, 5.0]));
+        assert_eq!(f.entrance_feature, Some(1));
         assert_eq!(f.reference_line, Some([[0.0, 0.0], [10.0, 10.0]]));
         assert_eq!(
             f.ignored.len(),

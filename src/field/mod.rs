@@ -7,6 +7,7 @@
 
 pub mod geojson;
 pub mod landmask;
+pub mod place;
 pub mod projection;
 pub mod ring;
 pub mod simplify;

@@ -3,6 +3,7 @@
 
 use super::geojson::{InputFeatures, InputPolygon, Role};
 use super::landmask::land_within;
+use super::place::{place_problem, MAX_PLACE_DISTANCE_M};
 use super::projection::{Frame, TransverseMercator};
 use super::ring::{clean_ring, find_self_intersection, signed_area2, RingRepairs};
 use super::{BearingRange, Coordinates, Field, Obstacle, ProhibitedRegion};
@@ -55,6 +56,7 @@ pub fn field_from_input(
         ));
     }
     let (entrance, reference_line) = (input.entrance, input.reference_line);
+    let entrance_feature = input.entrance_feature;
     let (mut boundary_in, others) = choose_boundary(input.polygons, &mut warnings)?;
     boundary_in.role = Role::Boundary;
     for p in std::iter::once(&boundary_in).chain(&others) {
@@ -86,6 +88,19 @@ pub fn field_from_input(
                 ),
             )
             .at_feature(boundary_in.feature));
+        }
+    }
+    if let (Some(p), Some(i)) = (entrance, entrance_feature) {
+        if let Some(problem) = place_problem(p, coordinates, &boundary, &frame) {
+            return Err(PlanError::new(
+                ErrorCode::CoordinateOutOfRange,
+                format!(
+                    "the field's entrance (feature {i}) is {p:?}: {problem}; move it to where the machine enters the field, within {} km of its boundary",
+                    MAX_PLACE_DISTANCE_M / 1000.0
+                ),
+            )
+            .at_feature(i)
+            .at_coordinate(p));
         }
     }
 
@@ -824,6 +839,31 @@ mod tests {
             let e = field(&fc(all)).unwrap_err();
             assert_eq!(e.code, ErrorCode::NoAllowedDirection, "{all}");
             assert_eq!(e.feature, Some(1));
+        }
+    }
+
+    #[test]
+    fn an_entrance_far_from_the_field_is_refused() {
+        let fc = |entrance: &str| {
+            format!(
+                r#"{{"type":"FeatureCollection","features":[
+                {{"type":"Feature","properties":{{"role":"boundary"}},"geometry":{{"type":"Polygon","coordinates":[{SQUARE}]}}}},
+                {{"type":"Feature","properties":{{"role":"entrance"}},"geometry":{{"type":"Point","coordinates":{entrance}}}}}]}}"#
+            )
+        };
+        let (f, _) = field(&fc("[24.052, 60.2505]")).unwrap();
+        assert_eq!(f.entrance, Some([24.052, 60.2505]));
+        // 0.2 degrees of latitude north: 22 km.
+        for far in [
+            "[24.05, 60.45]",
+            "[1e300, 1e300]",
+            "[-155.95, -60.25]",
+            "[24.05, 89.5]",
+        ] {
+            let e = field(&fc(far)).unwrap_err();
+            assert_eq!(e.code, ErrorCode::CoordinateOutOfRange, "{far}");
+            assert_eq!(e.feature, Some(1), "{far}");
+            assert!(e.message.contains("entrance"), "{}", e.message);
         }
     }
 
