@@ -16,11 +16,13 @@
 //! `--turning tracks|heading|on-the-spot` says how the machine may turn (default `tracks`: only
 //! tracks as driven; see the README).
 //!
-//! Exit status: 0 with a plan; 2 when the input or an option is invalid, with one line of JSON
-//! `{"code": ..., "message": ...}` on standard error; 1 when a file cannot be read or written.
+//! Exit status: 0 with a plan; 2 when the input or an option is invalid (the input too large or
+//! not UTF-8 text too), with one line of JSON `{"code": ..., "message": ...}` on standard error;
+//! 1 when a file cannot be read or written.
 
 #![allow(clippy::result_large_err)] // the error path of a command-line tool
 
+use furrow::field::geojson::MAX_INPUT_BYTES;
 use furrow::options::OPTION_DOCS;
 use furrow::tracks::{PlanTracks, Turning};
 use furrow::{plan_geojson, ErrorCode, PlanError, PlanOptions};
@@ -310,15 +312,63 @@ fn kebab_message(message: &str) -> String {
     out
 }
 
+/// Reads the field's text from the file `path` names, or from standard input (`-`): at most
+/// [`MAX_INPUT_BYTES`] and one byte more, so that an input too large is refused without reading
+/// it all. Text that is too large or not UTF-8 is the input's fault (exit 2), not the file's.
 fn read_input(path: &str) -> Result<String, Failure> {
+    let limit = MAX_INPUT_BYTES as u64 + 1;
+    let mut bytes = Vec::new();
     if path == "-" {
-        let mut text = String::new();
         std::io::stdin()
-            .read_to_string(&mut text)
+            .lock()
+            .take(limit)
+            .read_to_end(&mut bytes)
             .map_err(|e| Failure::Io(format!("cannot read standard input: {e}")))?;
-        return Ok(text);
+    } else {
+        let file = std::fs::File::open(path)
+            .map_err(|e| Failure::Io(format!("cannot read {path}: {e}")))?;
+        // A regular file says its size; a pipe or device says 0 and is cut off by `take`.
+        if let Ok(meta) = file.metadata() {
+            if meta.len() > MAX_INPUT_BYTES as u64 {
+                return Err(too_large(&format!("{} MB", meta.len() / (1024 * 1024))));
+            }
+        }
+        file.take(limit)
+            .read_to_end(&mut bytes)
+            .map_err(|e| Failure::Io(format!("cannot read {path}: {e}")))?;
     }
-    std::fs::read_to_string(path).map_err(|e| Failure::Io(format!("cannot read {path}: {e}")))
+    if bytes.len() > MAX_INPUT_BYTES {
+        return Err(too_large(&format!(
+            "more than {} MB",
+            MAX_INPUT_BYTES / (1024 * 1024)
+        )));
+    }
+    String::from_utf8(bytes).map_err(|e| Failure::Invalid(not_utf8(e.as_bytes(), e.utf8_error())))
+}
+
+fn too_large(size: &str) -> Failure {
+    Failure::Invalid(PlanError::new(
+        ErrorCode::InputTooLarge,
+        format!(
+            "the input is {size}; the planner accepts up to {} MB of GeoJSON",
+            MAX_INPUT_BYTES / (1024 * 1024)
+        ),
+    ))
+}
+
+/// The error for input that is not UTF-8, as JSON text must be: where the first bad byte is.
+fn not_utf8(bytes: &[u8], e: std::str::Utf8Error) -> PlanError {
+    let good = &bytes[..e.valid_up_to()];
+    let line = good.iter().filter(|&&b| b == b'\n').count() + 1;
+    let column = good.len() - good.iter().rposition(|&b| b == b'\n').map_or(0, |i| i + 1) + 1;
+    PlanError::new(
+        ErrorCode::InvalidJson,
+        format!(
+            "the input is not UTF-8 text, as JSON must be: byte {} (line {line}, column {column}) is not UTF-8; save the file as UTF-8",
+            e.valid_up_to()
+        ),
+    )
+    .at_text(line, column)
 }
 
 fn json_line(code: &str, message: &str) -> String {
@@ -366,7 +416,7 @@ fn print_help() {
         "to", "<lon,lat>"
     );
     println!("  --{:<22} {:<13} tracks (as driven, default), heading (no turning on the spot) or on-the-spot", "turning", "<name>");
-    println!("\nExit status: 0 planned; 2 invalid input or option (one JSON line on stderr); 1 file error.");
+    println!("\nExit status: 0 planned; 2 invalid input (also over 32 MB or not UTF-8) or option (one JSON line on stderr); 1 file error.");
 }
 
 fn to_json<T: serde::Serialize>(value: &T, pretty: bool) -> String {

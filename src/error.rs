@@ -13,7 +13,8 @@ use std::fmt;
 #[serde(rename_all = "snake_case")]
 #[non_exhaustive]
 pub enum ErrorCode {
-    /// The input is not JSON (truncated, or a number such as `NaN` that JSON does not have).
+    /// The input is not JSON (truncated, not UTF-8 text, or a number such as `NaN` that JSON
+    /// does not have).
     InvalidJson,
     /// The input is JSON but not the GeoJSON the planner reads.
     InvalidGeojson,

@@ -388,3 +388,68 @@ fn options_past_any_sense_exit_2() {
         assert_eq!(error_code(&out), "option_out_of_range", "{flag} {value}");
     }
 }
+
+#[test]
+fn input_that_is_not_utf8_exits_2() {
+    // The fourth line's text holds a byte that UTF-8 never has.
+    let mut input = rectangle_300_by_150().into_bytes();
+    let at = input.len() - 1;
+    input.splice(at..at, b",\n\"name\":\n\n\"F\xffeld\"".iter().copied());
+    let check = |out: Output| {
+        assert_eq!(out.status.code(), Some(2));
+        assert_eq!(error_code(&out), "invalid_json");
+        let e: serde_json::Value = serde_json::from_slice(&out.stderr).expect("JSON line");
+        assert_eq!(
+            (e["line"].as_u64(), e["column"].as_u64()),
+            (Some(4), Some(3))
+        );
+        assert!(e["message"].as_str().is_some_and(|m| m.contains("UTF-8")));
+    };
+    check(run_on(&input, &[]));
+    let dir = std::env::temp_dir().join(format!("furrow-cli-utf8-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let path = dir.join("latin1.geojson");
+    std::fs::write(&path, &input).expect("written");
+    check(run(&[&path.display().to_string()]));
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn input_over_32_mb_is_refused_unread() {
+    let limit = furrow::field::geojson::MAX_INPUT_BYTES;
+    // Standard input: twice the limit, and the planner stops reading after the limit, so the
+    // rest cannot be written (the pipe is closed on it).
+    let mut input = rectangle_300_by_150().into_bytes();
+    input.resize(2 * limit, b' ');
+    let mut child = plan_cli()
+        .arg("-")
+        .stdin(std::process::Stdio::piped())
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("spawns");
+    let mut stdin = child.stdin.take().expect("stdin");
+    let writer = std::thread::spawn(move || {
+        use std::io::Write;
+        stdin.write_all(&input)
+    });
+    let out = child.wait_with_output().expect("finishes");
+    let written = writer.join().expect("the writer");
+    assert_eq!(out.status.code(), Some(2));
+    assert_eq!(error_code(&out), "input_too_large");
+    assert_eq!(
+        written.map_err(|e| e.kind()),
+        Err(std::io::ErrorKind::BrokenPipe),
+        "the planner read all the input"
+    );
+    // A file says its size: a sparse one of 33 MB is refused by it.
+    let dir = std::env::temp_dir().join(format!("furrow-cli-large-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let path = dir.join("large.geojson");
+    let file = std::fs::File::create(&path).expect("created");
+    file.set_len(limit as u64 + 1024 * 1024).expect("sized");
+    let out = run(&[&path.display().to_string()]);
+    assert_eq!(out.status.code(), Some(2));
+    assert_eq!(error_code(&out), "input_too_large");
+    let _ = std::fs::remove_dir_all(&dir);
+}
