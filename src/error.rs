@@ -42,7 +42,8 @@ pub enum ErrorCode {
     InvalidOption,
     /// An option's value is outside the range the planner accepts.
     OptionOutOfRange,
-    /// The input is larger than the planner accepts (vertices or bytes).
+    /// The input is larger than the planner accepts (vertices, rings, features, forbidden
+    /// ranges, or bytes).
     InputTooLarge,
     /// The field is too large to plan: too many kilometres across, or too many swaths at the
     /// working width.

@@ -6,14 +6,30 @@
 //! `role` (`boundary`, `obstacle`, `prohibited`, and `entrance` for a Point or `reference_line`
 //! for a LineString, as the viewer saves them), `name` and `forbidden_bearings_deg`; other
 //! properties are ignored.
+//!
+//! What it keeps is bounded, whatever the input: each geometry's coordinates are read only when
+//! its feature is used, counting points and lists as they come, and the reading stops with
+//! `input_too_large` as soon as there are more than [`MAX_VERTICES`] points, or lists, in all;
+//! features beyond [`MAX_FEATURES`] and forbidden ranges beyond [`MAX_FORBIDDEN_RANGES`] are
+//! counted, not kept. So 32 MB of tiny arrays cost a few megabytes to refuse, not a gigabyte.
 
+use super::validate::MAX_VERTICES;
 use crate::error::{ErrorCode, PlanError};
-use serde::de::{self, Deserializer, SeqAccess, Visitor};
+use serde::de::{self, DeserializeSeed, Deserializer, IgnoredAny, SeqAccess, Visitor};
 use serde::Deserialize;
+use serde_json::value::RawValue;
 use std::fmt;
+use std::marker::PhantomData;
 
 /// Input larger than this many bytes of GeoJSON text is refused.
 pub const MAX_INPUT_BYTES: usize = 32 * 1024 * 1024;
+
+/// Most features a FeatureCollection may hold: a polygon has at least four positions (three
+/// corners and the first again), so no input within [`MAX_VERTICES`] has more polygons.
+pub const MAX_FEATURES: usize = MAX_VERTICES / 4;
+
+/// Most forbidden bearing ranges one prohibited region may have.
+pub const MAX_FORBIDDEN_RANGES: usize = 1000;
 
 /// What a polygon of the input stands for.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -61,6 +77,18 @@ pub struct InputFeatures {
 }
 
 /// Parses GeoJSON text.
+///
+/// ```
+/// use furrow::field::geojson::parse_str;
+/// use furrow::ErrorCode;
+///
+/// let input = parse_str(r#"{"type": "Polygon", "coordinates": [[[0, 0], [1, 0], [1, 1], [0, 0]]]}"#)?;
+/// assert_eq!(input.polygons[0].rings[0].len(), 4);
+/// // Refused as soon as the points pass the limit, before the rest is read.
+/// let many = format!(r#"{{"type": "Polygon", "coordinates": [[{}[0, 0]]]}}"#, "[0, 0],".repeat(300_000));
+/// assert_eq!(parse_str(&many).unwrap_err().code, ErrorCode::InputTooLarge);
+/// # Ok::<(), furrow::PlanError>(())
+/// ```
 pub fn parse_str(text: &str) -> Result<InputFeatures, PlanError> {
     if text.len() > MAX_INPUT_BYTES {
         return Err(PlanError::new(
@@ -105,24 +133,51 @@ pub fn parse_str(text: &str) -> Result<InputFeatures, PlanError> {
 fn plain(message: &str) -> String {
     message
         .replace("struct RawObject", "a GeoJSON object")
+        .replace("struct RawFeature", "a GeoJSON object")
+        .replace("struct RawGeometry", "a GeoJSON object")
         .replace("struct RawProperties", "a properties object")
         .replace("a number or an array of coordinates", "coordinates")
 }
 
 /// For JSON that is not the GeoJSON expected: the first feature that does not read on its own.
-/// Only called on the error path, so reading the text twice costs nothing in a good plan.
+/// Only called on the error path, so reading the text twice costs nothing in a good plan; the
+/// features are read one at a time, none kept.
 fn failing_feature(text: &str) -> Option<usize> {
-    /// The features of a collection as their text, each read again on its own.
-    #[derive(Deserialize)]
-    struct Features<'a> {
-        #[serde(borrow)]
-        features: Vec<&'a serde_json::value::RawValue>,
+    /// The index of the first feature that does not read, if any.
+    struct FirstFailing(Option<usize>);
+    impl<'de> Deserialize<'de> for FirstFailing {
+        fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+            struct Each;
+            impl<'de> Visitor<'de> for Each {
+                type Value = FirstFailing;
+                fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
+                    f.write_str("a list of features")
+                }
+                fn visit_seq<A: SeqAccess<'de>>(
+                    self,
+                    mut seq: A,
+                ) -> Result<FirstFailing, A::Error> {
+                    let mut i = 0;
+                    let mut failing = None;
+                    while let Some(feature) = seq.next_element::<&'de RawValue>()? {
+                        if failing.is_none()
+                            && serde_json::from_str::<RawFeature>(feature.get()).is_err()
+                        {
+                            failing = Some(i);
+                        }
+                        i += 1;
+                    }
+                    Ok(FirstFailing(failing))
+                }
+            }
+            d.deserialize_seq(Each)
+        }
     }
-    let collection: Features = serde_json::from_str(text).ok()?;
-    collection
-        .features
-        .iter()
-        .position(|f| serde_json::from_str::<RawObject>(f.get()).is_err())
+    #[derive(Deserialize)]
+    struct Features {
+        features: FirstFailing,
+    }
+    serde_json::from_str::<Features>(text).ok()?.features.0
 }
 
 /// Whether the text at a 1-based line and column starts with NaN or Infinity.
@@ -136,19 +191,39 @@ fn non_number_at(text: &str, line: usize, column: usize) -> bool {
 }
 
 /// A GeoJSON object of any type: FeatureCollection, Feature or geometry. Unknown members are
-/// ignored.
+/// ignored, unread.
 #[derive(Debug, Deserialize)]
-pub(crate) struct RawObject {
+struct RawObject<'a> {
     #[serde(rename = "type")]
     kind: String,
-    #[serde(default)]
-    features: Option<Vec<RawObject>>,
-    #[serde(default)]
-    geometry: Option<Box<RawObject>>,
+    #[serde(default, borrow)]
+    features: Option<Capped<RawFeature<'a>, MAX_FEATURES>>,
+    #[serde(default, borrow)]
+    geometry: Option<RawGeometry<'a>>,
     #[serde(default)]
     properties: Option<RawProperties>,
+    #[serde(default, borrow)]
+    coordinates: Option<&'a RawValue>,
+}
+
+/// A member of a FeatureCollection's `features`.
+#[derive(Debug, Deserialize)]
+struct RawFeature<'a> {
+    #[serde(rename = "type")]
+    kind: String,
+    #[serde(default, borrow)]
+    geometry: Option<RawGeometry<'a>>,
     #[serde(default)]
-    coordinates: Option<Coords>,
+    properties: Option<RawProperties>,
+}
+
+/// A geometry, its coordinates left as text until the feature is used ([`read_coordinates`]).
+#[derive(Debug, Deserialize)]
+struct RawGeometry<'a> {
+    #[serde(rename = "type")]
+    kind: String,
+    #[serde(default, borrow)]
+    coordinates: Option<&'a RawValue>,
 }
 
 #[derive(Debug, Default, Deserialize)]
@@ -158,7 +233,45 @@ struct RawProperties {
     #[serde(default)]
     name: Option<NameValue>,
     #[serde(default)]
-    forbidden_bearings_deg: Option<Vec<[f64; 2]>>,
+    forbidden_bearings_deg: Option<Capped<[f64; 2], MAX_FORBIDDEN_RANGES>>,
+}
+
+/// The first `N` items of a list, and how many it has: the items beyond are read (so that the
+/// JSON is checked) but not kept.
+#[derive(Debug)]
+struct Capped<T, const N: usize> {
+    items: Vec<T>,
+    total: usize,
+}
+
+impl<'de, T: Deserialize<'de>, const N: usize> Deserialize<'de> for Capped<T, N> {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct CappedVisitor<T, const N: usize>(PhantomData<T>);
+        impl<'de, T: Deserialize<'de>, const N: usize> Visitor<'de> for CappedVisitor<T, N> {
+            type Value = Capped<T, N>;
+            fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
+                f.write_str("an array")
+            }
+            fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<Capped<T, N>, A::Error> {
+                let mut items = Vec::new();
+                while items.len() < N {
+                    match seq.next_element()? {
+                        Some(item) => items.push(item),
+                        None => {
+                            let total = items.len();
+                            return Ok(Capped { items, total });
+                        }
+                    }
+                }
+                let mut total = items.len();
+                while seq.next_element::<IgnoredAny>()?.is_some() {
+                    total += 1;
+                }
+                Ok(Capped { items, total })
+            }
+        }
+        d.deserialize_seq(CappedVisitor(PhantomData))
+    }
 }
 
 /// A `name` may be a string or a number in the wild.
@@ -193,45 +306,141 @@ impl<'de> Deserialize<'de> for NameValue {
     }
 }
 
-/// GeoJSON coordinates of any depth.
+/// GeoJSON coordinates of any depth, positions folded as they are read.
 #[derive(Debug, Clone, PartialEq)]
 enum Coords {
+    /// A number where a list was expected (`null` is read as NaN: see [`CoordsSeed`]).
     Number(f64),
+    /// A list starting with two numbers: a position. Further numbers (altitude) are dropped.
+    Position([f64; 2]),
+    /// A list starting with a number that is no position: `[1]`, `[1, [2]]`.
+    NotPosition,
+    /// A list of lists (a ring, a polygon), or an empty list.
     List(Vec<Coords>),
 }
 
-impl<'de> Deserialize<'de> for Coords {
-    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
-        struct CoordsVisitor;
-        impl<'de> Visitor<'de> for CoordsVisitor {
-            type Value = Coords;
-            fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
-                f.write_str("a number or an array of coordinates")
-            }
-            fn visit_f64<E: de::Error>(self, v: f64) -> Result<Coords, E> {
-                Ok(Coords::Number(v))
-            }
-            fn visit_i64<E: de::Error>(self, v: i64) -> Result<Coords, E> {
-                Ok(Coords::Number(v as f64))
-            }
-            fn visit_u64<E: de::Error>(self, v: u64) -> Result<Coords, E> {
-                Ok(Coords::Number(v as f64))
-            }
-            // A number JSON cannot carry: JavaScript's JSON.stringify writes NaN and Infinity
-            // as null. Validation refuses it as a coordinate that is not a finite number.
-            fn visit_unit<E: de::Error>(self) -> Result<Coords, E> {
-                Ok(Coords::Number(f64::NAN))
-            }
-            fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<Coords, A::Error> {
-                let mut items = Vec::with_capacity(seq.size_hint().unwrap_or(0).min(4096));
-                while let Some(item) = seq.next_element()? {
-                    items.push(item);
+/// How much the coordinates read so far hold: points (positions, and numbers where positions
+/// belong) and lists of them; each may reach [`MAX_VERTICES`].
+#[derive(Debug, Default)]
+struct Budget {
+    points: usize,
+    lists: usize,
+}
+
+impl Budget {
+    /// Counts a point or a list; an error once either passes [`MAX_VERTICES`].
+    fn count<E: de::Error>(&mut self, point: bool) -> Result<(), E> {
+        let n = if point {
+            &mut self.points
+        } else {
+            &mut self.lists
+        };
+        *n += 1;
+        if *n > MAX_VERTICES {
+            return Err(E::custom("the input is too large"));
+        }
+        Ok(())
+    }
+
+    fn exceeded(&self) -> Option<PlanError> {
+        let what = if self.points > MAX_VERTICES {
+            "points"
+        } else if self.lists > MAX_VERTICES {
+            "lists of points (rings, polygons)"
+        } else {
+            return None;
+        };
+        Some(PlanError::new(
+            ErrorCode::InputTooLarge,
+            format!("the input has more than {MAX_VERTICES} {what}; the planner accepts up to {MAX_VERTICES}: simplify the outlines"),
+        ))
+    }
+}
+
+/// Reads [`Coords`], counting what it keeps in a [`Budget`].
+struct CoordsSeed<'b> {
+    budget: &'b mut Budget,
+}
+
+impl<'de> DeserializeSeed<'de> for CoordsSeed<'_> {
+    type Value = Coords;
+    fn deserialize<D: Deserializer<'de>>(self, d: D) -> Result<Coords, D::Error> {
+        d.deserialize_any(self)
+    }
+}
+
+impl<'de> Visitor<'de> for CoordsSeed<'_> {
+    type Value = Coords;
+    fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
+        f.write_str("a number or an array of coordinates")
+    }
+    fn visit_f64<E: de::Error>(self, v: f64) -> Result<Coords, E> {
+        Ok(Coords::Number(v))
+    }
+    fn visit_i64<E: de::Error>(self, v: i64) -> Result<Coords, E> {
+        Ok(Coords::Number(v as f64))
+    }
+    fn visit_u64<E: de::Error>(self, v: u64) -> Result<Coords, E> {
+        Ok(Coords::Number(v as f64))
+    }
+    // A number JSON cannot carry: JavaScript's JSON.stringify writes NaN and Infinity as null.
+    // Validation refuses it as a coordinate that is not a finite number.
+    fn visit_unit<E: de::Error>(self) -> Result<Coords, E> {
+        Ok(Coords::Number(f64::NAN))
+    }
+    fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<Coords, A::Error> {
+        let budget = self.budget;
+        let Some(first) = seq.next_element_seed(CoordsSeed { budget })? else {
+            budget.count(false)?;
+            return Ok(Coords::List(Vec::new()));
+        };
+        let Coords::Number(x) = first else {
+            // A list of lists: a ring, a polygon, the polygons of a MultiPolygon.
+            budget.count(false)?;
+            let mut items = vec![first];
+            while let Some(item) = seq.next_element_seed(CoordsSeed { budget })? {
+                if let Coords::Number(_) = item {
+                    budget.count(true)?;
                 }
-                Ok(Coords::List(items))
+                items.push(item);
+            }
+            return Ok(Coords::List(items));
+        };
+        budget.count(true)?;
+        let mut position = match seq.next_element_seed(CoordsSeed { budget })? {
+            Some(Coords::Number(y)) => Coords::Position([x, y]),
+            Some(_) => Coords::NotPosition,
+            None => return Ok(Coords::NotPosition),
+        };
+        while let Some(more) = seq.next_element_seed(CoordsSeed { budget })? {
+            if !matches!(more, Coords::Number(_)) {
+                position = Coords::NotPosition;
             }
         }
-        d.deserialize_any(CoordsVisitor)
+        Ok(position)
     }
+}
+
+/// Reads the coordinates of feature `i`'s geometry, within the budget.
+fn read_coordinates(i: usize, raw: &RawValue, budget: &mut Budget) -> Result<Coords, PlanError> {
+    let mut reader = serde_json::Deserializer::from_str(raw.get());
+    CoordsSeed { budget }
+        .deserialize(&mut reader)
+        .map_err(|e| match budget.exceeded() {
+            Some(too_large) => too_large,
+            None => {
+                // The place in the coordinates' own text would mislead: the feature says where.
+                let message = e.to_string();
+                let at = message.rfind(" at line ").unwrap_or(message.len());
+                invalid(
+                    i,
+                    format!(
+                        "the coordinates of feature {i} are not valid GeoJSON: {}",
+                        plain(&message[..at])
+                    ),
+                )
+            }
+        })
 }
 
 fn invalid(feature: usize, message: impl Into<String>) -> PlanError {
@@ -240,6 +449,7 @@ fn invalid(feature: usize, message: impl Into<String>) -> PlanError {
 
 fn collect(raw: RawObject) -> Result<InputFeatures, PlanError> {
     let mut out = InputFeatures::default();
+    let mut budget = Budget::default();
     match raw.kind.as_str() {
         "FeatureCollection" => {
             let features = raw.features.ok_or_else(|| {
@@ -248,7 +458,16 @@ fn collect(raw: RawObject) -> Result<InputFeatures, PlanError> {
                     "a FeatureCollection needs a `features` array",
                 )
             })?;
-            for (i, f) in features.into_iter().enumerate() {
+            if features.total > MAX_FEATURES {
+                return Err(PlanError::new(
+                    ErrorCode::InputTooLarge,
+                    format!(
+                        "the input has {} features; the planner accepts up to {MAX_FEATURES}",
+                        features.total
+                    ),
+                ));
+            }
+            for (i, f) in features.items.into_iter().enumerate() {
                 if f.kind != "Feature" {
                     return Err(invalid(
                         i,
@@ -258,16 +477,46 @@ fn collect(raw: RawObject) -> Result<InputFeatures, PlanError> {
                         ),
                     ));
                 }
-                collect_feature(i, f, &mut out)?;
+                collect_feature(i, f, &mut out, &mut budget)?;
             }
         }
-        "Feature" => collect_feature(0, raw, &mut out)?,
-        _ => collect_geometry(0, &raw, Role::Unspecified, None, Vec::new(), &mut out)?,
+        "Feature" => {
+            let feature = RawFeature {
+                kind: raw.kind,
+                geometry: raw.geometry,
+                properties: raw.properties,
+            };
+            collect_feature(0, feature, &mut out, &mut budget)?
+        }
+        _ => {
+            let geometry = RawGeometry {
+                kind: raw.kind,
+                coordinates: raw.coordinates,
+            };
+            let unspecified = Polygons {
+                role: Role::Unspecified,
+                name: None,
+                forbidden: Vec::new(),
+            };
+            collect_geometry(0, &geometry, unspecified, &mut out, &mut budget)?
+        }
     }
     Ok(out)
 }
 
-fn collect_feature(i: usize, f: RawObject, out: &mut InputFeatures) -> Result<(), PlanError> {
+/// What a feature's polygons carry: its role, name and forbidden bearings.
+struct Polygons {
+    role: Role,
+    name: Option<String>,
+    forbidden: Vec<[f64; 2]>,
+}
+
+fn collect_feature(
+    i: usize,
+    f: RawFeature,
+    out: &mut InputFeatures,
+    budget: &mut Budget,
+) -> Result<(), PlanError> {
     let props = f.properties.unwrap_or_default();
     let role = match props.role.as_deref() {
         None => Role::Unspecified,
@@ -275,8 +524,7 @@ fn collect_feature(i: usize, f: RawObject, out: &mut InputFeatures) -> Result<()
         Some("obstacle") => Role::Obstacle,
         Some("prohibited") => Role::Prohibited,
         Some(extra @ ("entrance" | "reference_line")) => {
-            collect_extra(i, extra, f.geometry.as_deref(), out);
-            return Ok(());
+            return collect_extra(i, extra, f.geometry.as_ref(), out, budget);
         }
         Some(other) => {
             out.ignored.push((
@@ -290,15 +538,33 @@ fn collect_feature(i: usize, f: RawObject, out: &mut InputFeatures) -> Result<()
         NameValue::Text(s) => s,
         NameValue::Number(x) => format!("{x}"),
     });
-    let forbidden = props.forbidden_bearings_deg.unwrap_or_default();
+    let forbidden = match props.forbidden_bearings_deg {
+        Some(ranges) if ranges.total > MAX_FORBIDDEN_RANGES => {
+            return Err(PlanError::new(
+                ErrorCode::InputTooLarge,
+                format!(
+                    "feature {i} has {} forbidden bearing ranges; the planner accepts up to {MAX_FORBIDDEN_RANGES} for a region",
+                    ranges.total
+                ),
+            )
+            .at_feature(i))
+        }
+        Some(ranges) => ranges.items,
+        None => Vec::new(),
+    };
     if role == Role::Prohibited && forbidden.is_empty() {
         return Err(invalid(
             i,
             format!("prohibited region (feature {i}) has no `forbidden_bearings_deg`"),
         ));
     }
+    let polygons = Polygons {
+        role,
+        name,
+        forbidden,
+    };
     match f.geometry {
-        Some(g) => collect_geometry(i, &g, role, name, forbidden, out),
+        Some(g) => collect_geometry(i, &g, polygons, out, budget),
         None if role == Role::Unspecified => {
             out.ignored.push((i, "it has no geometry".to_string()));
             Ok(())
@@ -309,20 +575,26 @@ fn collect_feature(i: usize, f: RawObject, out: &mut InputFeatures) -> Result<()
 
 /// The entrance (a Point) or AB line (a LineString) a feature gives; anything else is ignored
 /// with the reason.
-fn collect_extra(i: usize, role: &str, geometry: Option<&RawObject>, out: &mut InputFeatures) {
+fn collect_extra(
+    i: usize,
+    role: &str,
+    geometry: Option<&RawGeometry>,
+    out: &mut InputFeatures,
+    budget: &mut Budget,
+) -> Result<(), PlanError> {
     let position = |c: &Coords| match c {
-        Coords::List(v) => match v.as_slice() {
-            [Coords::Number(x), Coords::Number(y), ..] if x.is_finite() && y.is_finite() => {
-                Some([*x, *y])
-            }
-            _ => None,
-        },
-        Coords::Number(_) => None,
+        Coords::Position([x, y]) if x.is_finite() && y.is_finite() => Some([*x, *y]),
+        _ => None,
     };
     let kind = geometry.map(|g| g.kind.as_str());
-    let coords = geometry.and_then(|g| g.coordinates.as_ref());
+    let coords = match geometry.and_then(|g| g.coordinates) {
+        Some(raw) if matches!(kind, Some("Point" | "LineString")) => {
+            Some(read_coordinates(i, raw, budget)?)
+        }
+        _ => None,
+    };
     match (role, kind, coords) {
-        ("entrance", Some("Point"), Some(c)) => match position(c) {
+        ("entrance", Some("Point"), Some(c)) => match position(&c) {
             Some(p) if out.entrance.is_none() => {
                 out.entrance = Some(p);
                 out.entrance_feature = Some(i);
@@ -361,27 +633,33 @@ fn collect_extra(i: usize, role: &str, geometry: Option<&RawObject>, out: &mut I
             ),
         )),
     }
+    Ok(())
 }
 
 fn collect_geometry(
     i: usize,
-    g: &RawObject,
-    role: Role,
-    name: Option<String>,
-    forbidden: Vec<[f64; 2]>,
+    g: &RawGeometry,
+    polygons: Polygons,
     out: &mut InputFeatures,
+    budget: &mut Budget,
 ) -> Result<(), PlanError> {
-    let coords = || {
-        g.coordinates.as_ref().ok_or_else(|| {
+    let Polygons {
+        role,
+        name,
+        forbidden,
+    } = polygons;
+    let mut coords = || {
+        let raw = g.coordinates.ok_or_else(|| {
             invalid(
                 i,
                 format!("the {} of feature {i} has no coordinates", g.kind),
             )
-        })
+        })?;
+        read_coordinates(i, raw, budget)
     };
     match g.kind.as_str() {
         "Polygon" => {
-            let rings = polygon_rings(i, coords()?)?;
+            let rings = polygon_rings(i, &coords()?)?;
             out.polygons.push(InputPolygon {
                 feature: i,
                 role,
@@ -397,7 +675,7 @@ fn collect_geometry(
                     format!("the MultiPolygon of feature {i} must be an array of polygons"),
                 ));
             };
-            for part in parts {
+            for part in &parts {
                 let rings = polygon_rings(i, part)?;
                 out.polygons.push(InputPolygon {
                     feature: i,
@@ -490,31 +768,18 @@ fn polygon_rings(i: usize, c: &Coords) -> Result<Vec<Vec<[f64; 2]>>, PlanError> 
             positions
                 .iter()
                 .enumerate()
-                .map(|(v, p)| {
-                    position(p).ok_or_else(|| {
-                        invalid(
-                            i,
-                            format!(
-                                "vertex {v} of ring {r} of feature {i} is not a position [x, y]"
-                            ),
-                        )
-                        .at_ring(r)
-                        .at_vertex(v)
-                    })
+                .map(|(v, p)| match p {
+                    Coords::Position(xy) => Ok(*xy),
+                    _ => Err(invalid(
+                        i,
+                        format!("vertex {v} of ring {r} of feature {i} is not a position [x, y]"),
+                    )
+                    .at_ring(r)
+                    .at_vertex(v)),
                 })
                 .collect()
         })
         .collect()
-}
-
-fn position(c: &Coords) -> Option<[f64; 2]> {
-    match c {
-        Coords::List(xs) if xs.len() >= 2 => match (&xs[0], &xs[1]) {
-            (Coords::Number(x), Coords::Number(y)) => Some([*x, *y]),
-            _ => None,
-        },
-        _ => None,
-    }
 }
 
 #[cfg(test)]
@@ -634,6 +899,100 @@ mod tests {
             " ".repeat(MAX_INPUT_BYTES)
         );
         assert_eq!(parse_str(&text).unwrap_err().code, ErrorCode::InputTooLarge);
+    }
+
+    #[test]
+    fn points_and_lists_past_the_limit_are_refused_as_they_come() {
+        let ring = |unit: &str, n: usize| {
+            let units = vec![unit; n].join(",");
+            format!(r#"{{"type":"Polygon","coordinates":[[{units}]]}}"#)
+        };
+        // At the limit a ring reads (and is refused later, as a ring of one repeated point).
+        let at = parse_str(&ring("[1,2,3]", MAX_VERTICES)).unwrap();
+        assert_eq!(at.polygons[0].rings[0].len(), MAX_VERTICES);
+        assert_eq!(at.polygons[0].rings[0][0], [1.0, 2.0]);
+        for unit in ["[1,2]", "[1]", "[]"] {
+            let e = parse_str(&ring(unit, MAX_VERTICES + 1)).unwrap_err();
+            assert_eq!(e.code, ErrorCode::InputTooLarge, "{unit}");
+            assert!(e.message.contains("200000"), "{}", e.message);
+        }
+        // Numbers where positions belong count as points; after a first number, as the rest
+        // of one position, they are read and dropped.
+        let numbers = vec!["7"; MAX_VERTICES + 1].join(",");
+        let e = parse_str(&format!(
+            r#"{{"type":"Polygon","coordinates":[[[0,0],{numbers}]]}}"#
+        ))
+        .unwrap_err();
+        assert_eq!(e.code, ErrorCode::InputTooLarge);
+        let e = parse_str(&format!(
+            r#"{{"type":"Polygon","coordinates":[[{numbers}]]}}"#
+        ))
+        .unwrap_err();
+        assert_eq!((e.code, e.ring), (ErrorCode::InvalidGeojson, Some(0)));
+        // Rings: lists of lists.
+        let rings = vec!["[]"; MAX_VERTICES + 1].join(",");
+        let e = parse_str(&format!(r#"{{"type":"Polygon","coordinates":[{rings}]}}"#)).unwrap_err();
+        assert_eq!(e.code, ErrorCode::InputTooLarge);
+        // Points count across features.
+        let half = vec!["[0,0]"; MAX_VERTICES / 2 + 1].join(",");
+        let feature = format!(
+            r#"{{"type":"Feature","properties":{{"role":"obstacle"}},"geometry":{{"type":"Polygon","coordinates":[[{half}]]}}}}"#
+        );
+        let two = format!(r#"{{"type":"FeatureCollection","features":[{feature},{feature}]}}"#);
+        assert_eq!(parse_str(&two).unwrap_err().code, ErrorCode::InputTooLarge);
+    }
+
+    #[test]
+    fn features_and_forbidden_ranges_past_their_limits_are_refused() {
+        let features = |n: usize| {
+            let f = vec![r#"{"type":"Feature","geometry":null}"#; n].join(",");
+            format!(r#"{{"type":"FeatureCollection","features":[{f}]}}"#)
+        };
+        assert_eq!(
+            parse_str(&features(MAX_FEATURES)).unwrap().ignored.len(),
+            MAX_FEATURES
+        );
+        let e = parse_str(&features(MAX_FEATURES + 7)).unwrap_err();
+        assert_eq!(e.code, ErrorCode::InputTooLarge);
+        assert!(e.message.contains("50007 features"), "{}", e.message);
+        let region = |n: usize| {
+            let ranges = vec!["[10,20]"; n].join(",");
+            format!(
+                r#"{{"type":"Feature","properties":{{"role":"prohibited","forbidden_bearings_deg":[{ranges}]}},
+                "geometry":{{"type":"Polygon","coordinates":[[[0,0],[1,0],[1,1],[0,0]]]}}}}"#
+            )
+        };
+        let read = parse_str(&region(MAX_FORBIDDEN_RANGES)).unwrap();
+        assert_eq!(
+            read.polygons[0].forbidden_bearings_deg.len(),
+            MAX_FORBIDDEN_RANGES
+        );
+        let e = parse_str(&region(MAX_FORBIDDEN_RANGES + 1)).unwrap_err();
+        assert_eq!((e.code, e.feature), (ErrorCode::InputTooLarge, Some(0)));
+    }
+
+    #[test]
+    fn coordinates_are_read_only_for_features_used() {
+        // An ignored feature's coordinates are not read; a used feature's that are not
+        // coordinates are refused at that feature.
+        let text = |second: &str| {
+            format!(
+                r#"{{"type":"FeatureCollection","features":[
+                {{"type":"Feature","properties":{{"role":"boundary"}},
+                 "geometry":{{"type":"Polygon","coordinates":[[[0,0],[1,0],[1,1],[0,0]]]}}}},
+                {{"type":"Feature","properties":{{"role":"{second}"}},
+                 "geometry":{{"type":"Polygon","coordinates":[[[0,0],["a",0],[1,1],[0,0]]]}}}}]}}"#
+            )
+        };
+        let read = parse_str(&text("road")).unwrap();
+        assert_eq!((read.polygons.len(), read.ignored.len()), (1, 1));
+        let e = parse_str(&text("obstacle")).unwrap_err();
+        assert_eq!((e.code, e.feature), (ErrorCode::InvalidGeojson, Some(1)));
+        assert!(!e.message.contains("line"), "{}", e.message);
+        // A position's members beyond x and y must be numbers too.
+        let e = parse_str(r#"{"type":"Polygon","coordinates":[[[0,0],[1,0,[2]],[1,1],[0,0]]]}"#)
+            .unwrap_err();
+        assert_eq!((e.code, e.vertex), (ErrorCode::InvalidGeojson, Some(1)));
     }
 
     #[test]
