@@ -198,6 +198,7 @@ export type PlanFeatureKind =
   | "block"
   | "obstacle"
   | "obstacle_group"
+  | "uncovered"
   | "swath"
   | "headland"
   | "turn"
@@ -236,6 +237,10 @@ export interface PlanFeatureProperties {
   block?: number;
   /** The swath line a swath lies on, counted across the field. */
   line?: number;
+  /** Area of a part left standing (`uncovered`), square metres. */
+  area_m2?: number;
+  /** Of a part left standing, what a strip of the implement's width could reach, square metres. */
+  reachable_m2?: number;
   /** Which headland pass, 1 = nearest the boundary or obstacle it runs around. */
   pass?: number;
   /** Number of swaths of a block. */
@@ -371,10 +376,38 @@ export interface PlanSummary {
    * turns and connections (and a penalty per cusp) at turning speed.
    */
   estimated_time_s: number;
+  /** The implement's footprint against the field less its obstacles. */
+  coverage: CoverageSummary;
   /** Time the planner took, milliseconds. */
   planning_ms: number;
   /** Of which each stage, milliseconds (summed over the decompositions compared). */
   stages_ms: StageTimes;
+}
+
+/**
+ * Coverage: the strip of the implement's width along every stretch worked (swaths, headland
+ * passes; not turns, connections or stretches lifted over an obstacle), against the field less
+ * its obstacles. Measured on a grid of cells `resolution_m` across (a sixth of the working width,
+ * coarser on large fields). The crop left standing is in the features of kind `uncovered`.
+ */
+export interface CoverageSummary {
+  /** The field less its obstacles, square metres. */
+  field_area_m2: number;
+  /** Of it, worked at least once. */
+  covered_area_m2: number;
+  /** `covered_area_m2` over `field_area_m2`. */
+  coverage_ratio: number;
+  /**
+   * The share of the field a strip of the implement's width can reach at all (the field opened
+   * by a disc of the working width across): the limit of `coverage_ratio`.
+   */
+  reachable_ratio: number;
+  /** Area worked twice or more, over the field area. */
+  overlap_ratio: number;
+  /** Area left standing, square metres. */
+  uncovered_area_m2: number;
+  /** The side of the grid's cells, metres. */
+  resolution_m: number;
 }
 
 /** Time spent in each stage of planning, milliseconds. */

@@ -13,7 +13,8 @@
 //! 5. [`decompose`]: blocks of swaths that can be worked one after the other;
 //! 6. [`route`]: the order of blocks, swaths and headland passes;
 //! 7. [`path`]: the continuous path, with turns and connections;
-//! 8. [`metrics`]: distances, areas and counts;
+//! 8. [`metrics`]: distances, areas and counts, and [`coverage`]: the implement's footprint
+//!    against the field, what it could reach, and the crop left standing;
 //! 9. [`tracks`]: the lanes the plan leaves, for driving on existing tracks later.
 //!
 //! [`plan()`] runs them in order; [`output`] writes the result as GeoJSON in the input's
@@ -38,6 +39,7 @@
 // line, column) so that callers can read it directly; it travels only on the cold error path.
 #![allow(clippy::result_large_err)]
 
+pub mod coverage;
 pub mod decompose;
 pub mod direction;
 pub mod error;

@@ -1,5 +1,6 @@
 //! Metrics: the figures by which a plan is judged (Zhou et al. table 1, Fields2Cover's objectives).
 
+use crate::coverage::Coverage;
 use crate::decompose::{Blocks, Decomposition};
 use crate::direction::{DirectionMode, SearchMethod};
 use crate::field::Field;
@@ -96,6 +97,9 @@ pub struct Summary {
     /// Estimated operation time, seconds: swaths and headland passes at working speed; the
     /// path's turns and connections (and each cusp's penalty) at turning speed.
     pub estimated_time_s: f64,
+    /// The implement's footprint against the field less its obstacles: covered, reachable,
+    /// worked twice, left standing.
+    pub coverage: Coverage,
     /// Time the planner took, milliseconds.
     pub planning_ms: f64,
     /// Of which each stage, milliseconds (summed over the decompositions compared).
@@ -380,6 +384,7 @@ pub fn summarise(
             straight_connections: route.all_connections().filter(|c| c.straight).count(),
         },
         estimated_time_s: working_time_s + non_working_time_s,
+        coverage: Coverage::default(),
         planning_ms: 0.0,
         stages_ms: StageTimes::default(),
     }

@@ -12,6 +12,7 @@
 //! | `headland` | LineString | `sequence`, `pass` (1 = nearest the boundary or obstacle), `around` (`field` or `obstacle`), `closed`, `length_m` |
 //! | `turn` | LineString | `sequence`, `block`, `length_m`, `form`, `word`, `inside` |
 //! | `connection` | LineString | `sequence`, `length_m` |
+//! | `uncovered` | Polygon | `index`, `area_m2`, `reachable_m2` (what a strip of the implement's width could reach of it): crop left standing, parts larger than a quarter of a working width squared, largest first |
 //!
 //! Every drivable feature also has `distance_m`, `time_s` (from the start of the path),
 //! `duration_s`, `working`, and at each point of its line `heading_deg` and `curvature` (and
@@ -19,7 +20,7 @@
 //!
 //! Drivable features (`swath`, `headland`, `turn`, `connection`) carry `sequence`, their position
 //! in driving order from 0, and follow each other in that order in `features`; each starts where
-//! the one before it ends. Blocks, obstacles and obstacle groups come first. The collection has two more members:
+//! the one before it ends. Blocks, obstacles, obstacle groups and the parts left uncovered come first. The collection has two more members:
 //! `summary` ([`Summary`]) and `warnings` (a list of `{code, message, feature?}`).
 
 pub mod json;
@@ -67,7 +68,8 @@ pub struct Feature {
 /// The properties of a plan feature; which are present depends on `kind`.
 #[derive(Debug, Clone, Default, Serialize)]
 pub struct Properties {
-    /// `block`, `obstacle`, `obstacle_group`, `swath`, `headland`, `turn` or `connection`.
+    /// `block`, `obstacle`, `obstacle_group`, `uncovered`, `swath`, `headland`, `turn` or
+    /// `connection`.
     pub kind: &'static str,
     /// Position in driving order (drivable features).
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -75,6 +77,13 @@ pub struct Properties {
     /// Index of the block, obstacle or swath.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub index: Option<usize>,
+    /// Area of a part left standing, square metres.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub area_m2: Option<f64>,
+    /// Of a part left standing, what a strip of the implement's width could reach, square
+    /// metres.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub reachable_m2: Option<f64>,
     /// Position of a block in the order blocks are worked.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub order: Option<usize>,
@@ -230,6 +239,18 @@ impl Plan {
                     out.polygon(part),
                 ));
             }
+        }
+        for (i, part) in self.summary.coverage.uncovered.iter().enumerate() {
+            features.push(out.feature(
+                Properties {
+                    kind: "uncovered",
+                    index: Some(i),
+                    area_m2: Some(round(part.area_m2, 1e-2)),
+                    reachable_m2: Some(round(part.reachable_m2, 1e-2)),
+                    ..Default::default()
+                },
+                out.polygon(&part.polygon),
+            ));
         }
         let vehicle = self.options.vehicle();
         let (mut distance, mut time) = (0.0, 0.0);

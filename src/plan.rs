@@ -435,6 +435,7 @@ pub(crate) fn plan_stages(
         candidates: figures,
     };
     summary.route.pattern = options.pattern;
+    summary.coverage = crate::coverage::of_plan(&field, &swaths, &route, &path, width);
     times.lap(&mut clock, |t| &mut t.metrics);
     summary.stages_ms = times;
     warnings.extend(own_warnings);

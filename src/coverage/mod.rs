@@ -1,0 +1,334 @@
+//! Coverage: how much of the field the implement works, how much it could reach at all, how
+//! much it works twice, and where crop is left standing.
+//!
+//! The implement's footprint is the strip of its width along every stretch it works (swaths,
+//! headland passes, fill passes; not turns, connections or stretches lifted over an obstacle),
+//! measured against the field less all its obstacles. The physical limit is the part of the
+//! field a strip of the implement's width can reach at all: the field opened by a disc of the
+//! working width across (a strip never reaches into a corner sharper than a right angle or a
+//! neck narrower than itself).
+//!
+//! Measured on a grid ([`raster`]) of cells a sixth of the working width across (coarser on
+//! large fields, so that the grid holds at most [`MAX_CELLS`]): the field, the strips as driven
+//! and the field opened by the implement's half width ([`crate::headland::offset::open`]) are
+//! drawn on it. The figures are exact to a fraction of a cell along each outline; the crop left
+//! standing is given as polygons ([`outline`]) of the parts larger than a quarter of a working
+//! width squared.
+
+pub mod outline;
+pub mod raster;
+
+use crate::field::Field;
+use crate::geometry::Extremes;
+use crate::headland::offset::open;
+use crate::path::Path;
+use crate::route::{Route, RouteStep};
+use crate::swath::Swaths;
+use geo::{BooleanOps, BoundingRect, Coord, MultiPolygon, Polygon};
+use raster::Grid;
+use serde::Serialize;
+
+/// Most cells of the coverage grid: its cells grow beyond a sixth of the width where the field
+/// would need more (a 50 ha field worked at 6 m has cells of 1 m).
+pub const MAX_CELLS: usize = 500_000;
+
+/// Cells across one working width.
+pub const CELLS_PER_WIDTH: f64 = 6.0;
+
+/// Turns at a point of a worked line sharper than this (radians) get the implement's sweep round
+/// the point, as it swings round the turn.
+const SWING_ANGLE: f64 = 0.03;
+
+/// The coverage of a plan.
+#[derive(Debug, Clone, Default, PartialEq, Serialize)]
+pub struct Coverage {
+    /// The field less its obstacles, square metres.
+    pub field_area_m2: f64,
+    /// Of it, worked at least once, square metres.
+    pub covered_area_m2: f64,
+    /// Covered share of the field.
+    pub coverage_ratio: f64,
+    /// The share of the field a strip of the implement's width can reach at all: the limit of
+    /// `coverage_ratio`.
+    pub reachable_ratio: f64,
+    /// Area worked twice or more, as a share of the field.
+    pub overlap_ratio: f64,
+    /// Area left standing, square metres.
+    pub uncovered_area_m2: f64,
+    /// The side of the grid's cells, metres: the figures' resolution.
+    pub resolution_m: f64,
+    /// The parts of the field left standing that are larger than the tolerance, largest first.
+    #[serde(skip)]
+    pub uncovered: Vec<Uncovered>,
+}
+
+/// A part of the field left standing.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Uncovered {
+    /// Its outline, local metres.
+    pub polygon: Polygon,
+    /// Its area, square metres (counted in cells).
+    pub area_m2: f64,
+    /// Of it, what a strip of the implement's width could reach, square metres.
+    pub reachable_m2: f64,
+}
+
+/// Measures the coverage of `worked` lines (each a polyline driven with the implement down) of
+/// an implement `width` metres wide over the field `boundary` less its `obstacles`.
+///
+/// ```
+/// use furrow::coverage::measure;
+/// use geo::{coord, polygon};
+///
+/// // A 30 x 100 m field worked by four 6 m swaths: the last 6 m strip left standing.
+/// let field = polygon![(x: 0., y: 0.), (x: 30., y: 0.), (x: 30., y: 100.), (x: 0., y: 100.)];
+/// let swaths: Vec<Vec<_>> = [3.0, 9.0, 15.0, 21.0]
+///     .iter()
+///     .map(|&x| vec![coord! { x: x, y: 0.0 }, coord! { x: x, y: 100.0 }])
+///     .collect();
+/// let c = measure(&field, &[], &swaths, 6.0);
+/// assert!((c.coverage_ratio - 0.8).abs() < 0.01);
+/// assert!((c.reachable_ratio - 1.0).abs() < 0.01);
+/// assert_eq!(c.uncovered.len(), 1);
+/// assert!((c.uncovered[0].area_m2 - 600.0).abs() < 10.0);
+/// ```
+pub fn measure(
+    boundary: &Polygon,
+    obstacles: &[Polygon],
+    worked: &[Vec<Coord>],
+    width: f64,
+) -> Coverage {
+    let Some(bounds) = boundary.bounding_rect() else {
+        return Coverage::default();
+    };
+    if !width.is_finite() || width <= 0.0 {
+        return Coverage::default();
+    }
+    let grid = Grid::over(bounds, width / CELLS_PER_WIDTH, MAX_CELLS);
+    let field = field_cells(&grid, boundary, obstacles);
+    let counts = worked_counts(&grid, &field, worked, width);
+    let reachable = reachable_cells(&grid, boundary, obstacles, &field, &counts, width / 2.0);
+    figures(&grid, &field, &counts, &reachable, width)
+}
+
+/// The coverage of a plan's path over its field (less all its obstacles, those lifted over
+/// too).
+pub fn of_plan(field: &Field, swaths: &Swaths, route: &Route, path: &Path, width: f64) -> Coverage {
+    let obstacles: Vec<Polygon> = field.obstacles.iter().map(|o| o.polygon.clone()).collect();
+    measure(
+        &field.boundary,
+        &obstacles,
+        &worked_lines(swaths, route, path),
+        width,
+    )
+}
+
+/// The lines a path works along: each swath as its centre line less the stretches lifted over
+/// obstacles, each other working segment as driven.
+pub fn worked_lines(swaths: &Swaths, route: &Route, path: &Path) -> Vec<Vec<Coord>> {
+    let mut out = Vec::new();
+    for seg in path.segments.iter().filter(|s| s.is_working()) {
+        let step = seg.step.and_then(|i| route.steps.get(i));
+        match step {
+            Some(&RouteStep::Swath { swath, .. }) => {
+                if let Some(s) = swaths.swaths.get(swath) {
+                    let start = swaths.lifts.partition_point(|l| l.swath < swath);
+                    let lifted = swaths.lifts[start..]
+                        .iter()
+                        .take_while(|l| l.swath == swath);
+                    let mut from = s.along.0;
+                    for l in lifted {
+                        if l.along.0 > from {
+                            out.push(vec![
+                                s.frame.point(s.across, from),
+                                s.frame.point(s.across, l.along.0),
+                            ]);
+                        }
+                        from = from.greater(l.along.1);
+                    }
+                    if s.along.1 > from {
+                        out.push(vec![
+                            s.frame.point(s.across, from),
+                            s.frame.point(s.across, s.along.1),
+                        ]);
+                    }
+                }
+            }
+            _ => out.push(seg.line.0.clone()),
+        }
+    }
+    out
+}
+
+/// Which cells are in the field and off its obstacles.
+fn field_cells(grid: &Grid, boundary: &Polygon, obstacles: &[Polygon]) -> Vec<bool> {
+    let mut field = vec![false; grid.len()];
+    grid.fill_polygon(boundary, |i| field[i] = true);
+    for o in obstacles {
+        grid.fill_polygon(o, |i| field[i] = false);
+    }
+    field
+}
+
+/// How many worked lines sweep each cell of the field (each line counted once per cell, however
+/// often it comes back over it).
+fn worked_counts(grid: &Grid, field: &[bool], worked: &[Vec<Coord>], width: f64) -> Vec<u8> {
+    let half = width / 2.0;
+    let mut counts = vec![0u8; grid.len()];
+    let mut last = vec![u32::MAX; grid.len()];
+    for (k, line) in worked.iter().enumerate() {
+        let k = k as u32;
+        let mut mark = |i: usize| {
+            if field[i] && last[i] != k {
+                last[i] = k;
+                counts[i] = counts[i].saturating_add(1);
+            }
+        };
+        for (n, w) in line.windows(2).enumerate() {
+            grid.fill_strip(w[0], w[1], half, &mut mark);
+            // The implement swings round a point where the line turns.
+            if let Some(&next) = line.get(n + 2) {
+                if turn_angle(w[0], w[1], next) > SWING_ANGLE {
+                    grid.fill_disc(w[1], half, &mut mark);
+                }
+            }
+        }
+    }
+    counts
+}
+
+/// The angle (radians, unsigned) the line turns at `b` on its way from `a` to `c`.
+fn turn_angle(a: Coord, b: Coord, c: Coord) -> f64 {
+    let (u, v) = (b - a, c - b);
+    let cross = u.x * v.y - u.y * v.x;
+    let dot = u.x * v.x + u.y * v.y;
+    cross.abs().atan2(dot)
+}
+
+/// The cells a strip of half-width `radius` can reach: those of the field opened by a disc of
+/// that radius, and those the plan works (whatever it works, it reached).
+fn reachable_cells(
+    grid: &Grid,
+    boundary: &Polygon,
+    obstacles: &[Polygon],
+    field: &[bool],
+    counts: &[u8],
+    radius: f64,
+) -> Vec<bool> {
+    let region = if obstacles.is_empty() {
+        MultiPolygon::new(vec![boundary.clone()])
+    } else {
+        boundary.difference(&MultiPolygon::new(obstacles.to_vec()))
+    };
+    let mut reachable: Vec<bool> = counts.iter().map(|&c| c > 0).collect();
+    for polygon in &open(&region, radius).0 {
+        grid.fill_polygon(polygon, |i| reachable[i] |= field[i]);
+    }
+    reachable
+}
+
+fn figures(grid: &Grid, field: &[bool], counts: &[u8], reachable: &[bool], width: f64) -> Coverage {
+    let a = grid.cell_area();
+    let count = |f: &dyn Fn(usize) -> bool| (0..grid.len()).filter(|&i| f(i)).count() as f64 * a;
+    let field_area = count(&|i| field[i]);
+    let covered = count(&|i| counts[i] > 0);
+    let twice = count(&|i| counts[i] > 1);
+    let reach = count(&|i| reachable[i]);
+    let ratio = |x: f64| {
+        if field_area > 0.0 {
+            (x / field_area).clamp(0.0, 1.0)
+        } else {
+            0.0
+        }
+    };
+    let uncovered = standing_parts(grid, field, counts, reachable, width);
+    Coverage {
+        field_area_m2: field_area,
+        covered_area_m2: covered,
+        coverage_ratio: ratio(covered),
+        reachable_ratio: ratio(reach),
+        overlap_ratio: ratio(twice),
+        uncovered_area_m2: (field_area - covered).greater(0.0),
+        resolution_m: grid.cell,
+        uncovered,
+    }
+}
+
+/// The parts of the field left standing larger than a quarter of a working width squared, with
+/// their outlines, largest first.
+fn standing_parts(
+    grid: &Grid,
+    field: &[bool],
+    counts: &[u8],
+    reachable: &[bool],
+    width: f64,
+) -> Vec<Uncovered> {
+    let a = grid.cell_area();
+    let least = (width * width / 4.0).greater(a * 4.0);
+    let mut out: Vec<Uncovered> =
+        outline::parts(grid.columns, grid.rows, |i| field[i] && counts[i] == 0)
+            .into_iter()
+            .filter(|p| p.cells.len() as f64 * a >= least)
+            .filter_map(|p| {
+                let reachable_m2 = p.cells.iter().filter(|&&i| reachable[i]).count() as f64 * a;
+                let polygon = outline::outline(grid, &p, grid.cell * 0.75)?;
+                Some(Uncovered {
+                    polygon,
+                    area_m2: p.cells.len() as f64 * a,
+                    reachable_m2,
+                })
+            })
+            .collect();
+    out.sort_by(|x, y| y.area_m2.total_cmp(&x.area_m2));
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use geo::{coord, polygon};
+
+    #[test]
+    fn a_neck_narrower_than_the_implement_is_out_of_reach() {
+        // A 200 m square with a 2 m wide, 100 m long arm: at 6 m the arm is out of reach, and
+        // the square's corners lose (1 - π/4) 9 m² each.
+        let field = polygon![
+            (x: 0., y: 0.), (x: 200., y: 0.), (x: 200., y: 99.), (x: 300., y: 99.),
+            (x: 300., y: 101.), (x: 200., y: 101.), (x: 200., y: 200.), (x: 0., y: 200.)
+        ];
+        let c = measure(&field, &[], &[], 6.0);
+        assert_eq!(c.coverage_ratio, 0.0);
+        let corners = 4.0 * (1.0 - std::f64::consts::FRAC_PI_4) * 9.0;
+        let expected = (40_000.0 - corners) / 40_200.0;
+        assert!(
+            (c.reachable_ratio - expected).abs() < 0.002,
+            "{}",
+            c.reachable_ratio
+        );
+        assert_eq!(c.uncovered.len(), 1);
+        assert!(c.uncovered[0].reachable_m2 < c.uncovered[0].area_m2 - 150.0);
+    }
+
+    #[test]
+    fn overlap_counts_area_worked_twice_but_not_a_line_over_itself() {
+        let field = polygon![(x: 0., y: 0.), (x: 12., y: 0.), (x: 12., y: 100.), (x: 0., y: 100.)];
+        // Two swaths 4 m apart (2 m of overlap), one of them driven there and back.
+        let worked = vec![
+            vec![
+                coord! { x: 3.0, y: 0.0 },
+                coord! { x: 3.0, y: 100.0 },
+                coord! { x: 3.0, y: 0.0 },
+            ],
+            vec![coord! { x: 7.0, y: 0.0 }, coord! { x: 7.0, y: 100.0 }],
+        ];
+        let c = measure(&field, &[], &worked, 6.0);
+        // Exact to a column of cells either way.
+        let column = c.resolution_m * 100.0 / 1200.0;
+        assert!(
+            (c.overlap_ratio - 200.0 / 1200.0).abs() <= column,
+            "{}",
+            c.overlap_ratio
+        );
+        assert!((c.coverage_ratio - 1000.0 / 1200.0).abs() <= column);
+    }
+}

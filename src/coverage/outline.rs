@@ -1,0 +1,204 @@
+//! From cells to polygons: the connected parts of a set of cells (side by side, not corner to
+//! corner) and their outlines along the cells' sides, as polygons with holes.
+
+use super::raster::Grid;
+use crate::geometry::{sleeve_ring, Sleeve};
+use geo::{Coord, LineString, Polygon};
+use std::collections::HashMap;
+
+/// One connected part of a set of cells.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Part {
+    /// Its cells, by index.
+    pub cells: Vec<usize>,
+}
+
+/// The connected parts of the cells for which `in_set` is true (cells sharing a side are
+/// connected), in the order of their first cell.
+///
+/// ```
+/// use furrow::coverage::outline::parts;
+///
+/// // 4 x 2 cells: two parts, the left column and the two right columns (x marks the set).
+/// // row 1:  x . x x
+/// // row 0:  x . . x
+/// let set = [true, false, false, true, true, false, true, true];
+/// let p = parts(4, 2, |i| set[i]);
+/// assert_eq!(p.len(), 2);
+/// assert_eq!(p[0].cells, vec![0, 4]);
+/// assert_eq!(p[1].cells.len(), 3);
+/// ```
+pub fn parts(columns: usize, rows: usize, in_set: impl Fn(usize) -> bool) -> Vec<Part> {
+    let n = columns * rows;
+    let mut seen = vec![false; n];
+    let mut out = Vec::new();
+    let mut stack = Vec::new();
+    for start in 0..n {
+        if seen[start] || !in_set(start) {
+            continue;
+        }
+        seen[start] = true;
+        stack.push(start);
+        let mut cells = Vec::new();
+        while let Some(c) = stack.pop() {
+            cells.push(c);
+            let (i, j) = (c % columns, c / columns);
+            let mut push = |k: usize| {
+                if !seen[k] && in_set(k) {
+                    seen[k] = true;
+                    stack.push(k);
+                }
+            };
+            if i > 0 {
+                push(c - 1);
+            }
+            if i + 1 < columns {
+                push(c + 1);
+            }
+            if j > 0 {
+                push(c - columns);
+            }
+            if j + 1 < rows {
+                push(c + columns);
+            }
+        }
+        cells.sort_unstable();
+        out.push(Part { cells });
+    }
+    out
+}
+
+/// The outline of a part as a polygon (outer ring counter-clockwise, holes clockwise), its
+/// staircases smoothed to within `smoothing` metres.
+pub fn outline(grid: &Grid, part: &Part, smoothing: f64) -> Option<Polygon> {
+    let member: std::collections::HashSet<usize> = part.cells.iter().copied().collect();
+    let inside = |i: isize, j: isize| {
+        i >= 0
+            && j >= 0
+            && (i as usize) < grid.columns
+            && (j as usize) < grid.rows
+            && member.contains(&(j as usize * grid.columns + i as usize))
+    };
+    // Directed sides with the part on their left, keyed by the grid corner they start from.
+    let mut sides: HashMap<(isize, isize), Vec<(isize, isize)>> = HashMap::new();
+    for &c in &part.cells {
+        let (i, j) = ((c % grid.columns) as isize, (c / grid.columns) as isize);
+        if !inside(i, j - 1) {
+            sides.entry((i, j)).or_default().push((i + 1, j));
+        }
+        if !inside(i + 1, j) {
+            sides.entry((i + 1, j)).or_default().push((i + 1, j + 1));
+        }
+        if !inside(i, j + 1) {
+            sides.entry((i + 1, j + 1)).or_default().push((i, j + 1));
+        }
+        if !inside(i - 1, j) {
+            sides.entry((i, j + 1)).or_default().push((i, j));
+        }
+    }
+    let mut rings = trace(&mut sides);
+    let corner = |(i, j): (isize, isize)| grid.corner(i.max(0) as usize, j.max(0) as usize);
+    let mut polygons: Vec<LineString> = rings
+        .drain(..)
+        .filter_map(|ring| {
+            let points: Vec<Coord> = ring.into_iter().map(corner).collect();
+            let smooth = sleeve_ring(&points, Sleeve::both(smoothing));
+            (smooth.len() >= 3).then(|| {
+                let mut closed = smooth;
+                closed.push(closed[0]);
+                LineString::new(closed)
+            })
+        })
+        .collect();
+    // The outer ring encloses the most area, counter-clockwise; the others are holes.
+    let area = |r: &LineString| {
+        r.0.windows(2)
+            .map(|w| w[0].x * w[1].y - w[1].x * w[0].y)
+            .sum::<f64>()
+    };
+    let outer =
+        (0..polygons.len()).max_by(|&a, &b| area(&polygons[a]).total_cmp(&area(&polygons[b])))?;
+    let exterior = polygons.swap_remove(outer);
+    Some(Polygon::new(exterior, polygons))
+}
+
+/// Links directed sides into closed rings. Where two rings touch at a corner, the side taken is
+/// the one turning most to the left, so that rings never cross.
+fn trace(sides: &mut HashMap<(isize, isize), Vec<(isize, isize)>>) -> Vec<Vec<(isize, isize)>> {
+    let mut starts: Vec<(isize, isize)> = sides.keys().copied().collect();
+    starts.sort_unstable();
+    let mut rings = Vec::new();
+    for start in starts {
+        while sides.get(&start).is_some_and(|v| !v.is_empty()) {
+            let mut ring = vec![start];
+            let mut from = start;
+            let mut heading = (0, 0);
+            while let Some(next) = take_side(sides, from, heading) {
+                heading = (next.0 - from.0, next.1 - from.1);
+                from = next;
+                if next == start {
+                    break;
+                }
+                ring.push(next);
+            }
+            if ring.len() >= 4 {
+                rings.push(ring);
+            }
+        }
+    }
+    rings
+}
+
+/// Takes the side leaving `corner` that turns most to the left of `heading` (any side for the
+/// first step of a ring).
+fn take_side(
+    sides: &mut HashMap<(isize, isize), Vec<(isize, isize)>>,
+    corner: (isize, isize),
+    heading: (isize, isize),
+) -> Option<(isize, isize)> {
+    let out = sides.get_mut(&corner)?;
+    let k = (0..out.len()).max_by_key(|&k| {
+        let d = (out[k].0 - corner.0, out[k].1 - corner.1);
+        // Left turn 2, straight 1, right turn 0.
+        heading.0 * d.1 - heading.1 * d.0 + 1
+    })?;
+    Some(out.swap_remove(k))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use geo::{coord, Area, Rect};
+
+    #[test]
+    fn a_ring_of_cells_outlines_as_a_polygon_with_a_hole() {
+        // 5 x 5 cells of 1 m, all but the middle one.
+        let grid = Grid::over(
+            Rect::new(coord! { x: 0.0, y: 0.0 }, coord! { x: 3.0, y: 3.0 }),
+            1.0,
+            100,
+        );
+        assert_eq!((grid.columns, grid.rows), (5, 5));
+        let p = parts(5, 5, |i| i != 12);
+        assert_eq!(p.len(), 1);
+        let polygon = outline(&grid, &p[0], 0.0).unwrap();
+        assert_eq!(polygon.interiors().len(), 1);
+        assert!((polygon.unsigned_area() - 24.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn parts_touching_at_a_corner_stay_apart() {
+        // Two cells corner to corner.
+        let grid = Grid::over(
+            Rect::new(coord! { x: 0.0, y: 0.0 }, coord! { x: 0.0, y: 0.0 }),
+            1.0,
+            100,
+        );
+        let p = parts(grid.columns, grid.rows, |i| i == 0 || i == grid.columns + 1);
+        assert_eq!(p.len(), 2);
+        for part in &p {
+            let polygon = outline(&grid, part, 0.0).unwrap();
+            assert!((polygon.unsigned_area() - 1.0).abs() < 1e-9);
+        }
+    }
+}

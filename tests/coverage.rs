@@ -1,0 +1,204 @@
+//! The plan's coverage figures against an independent count: points spread evenly over the
+//! field (less its obstacles), each counted as worked when it lies within half a width of a
+//! stretch the plan's GeoJSON says is worked (swaths less their lifted stretches, headland
+//! passes), square to it and between its ends, or round one of its corners.
+
+use furrow::{plan_geojson, Plan};
+use geo::{Contains, Coord, Point, Polygon};
+
+mod common;
+
+/// A worked stretch in local metres.
+type Stretch = (Coord, Coord);
+
+/// The worked stretches of a plan as its GeoJSON gives them, back in local metres.
+fn worked_stretches(plan: &Plan) -> (Vec<Stretch>, Vec<Coord>) {
+    let json: serde_json::Value =
+        serde_json::from_str(&plan.to_geojson_string()).expect("the plan's JSON");
+    let mut stretches = Vec::new();
+    let mut corners = Vec::new();
+    for f in json["features"].as_array().expect("features") {
+        let p = &f["properties"];
+        if p["working"] != serde_json::Value::Bool(true) {
+            continue;
+        }
+        let line: Vec<Coord> = f["geometry"]["coordinates"]
+            .as_array()
+            .expect("a line")
+            .iter()
+            .map(|c| {
+                let (x, y) = (c[0].as_f64().expect("x"), c[1].as_f64().expect("y"));
+                plan.field.frame.to_local([x, y])
+            })
+            .collect();
+        let lifted: Vec<(f64, f64)> = p["lifted"]
+            .as_array()
+            .map(|l| {
+                l.iter()
+                    .map(|r| (r[0].as_f64().unwrap_or(0.0), r[1].as_f64().unwrap_or(0.0)))
+                    .collect()
+            })
+            .unwrap_or_default();
+        let mut along = 0.0;
+        for w in line.windows(2) {
+            let d = w[1] - w[0];
+            let length = d.x.hypot(d.y);
+            // The parts of this stretch not lifted.
+            let mut from = 0.0;
+            for &(a, b) in &lifted {
+                let (a, b) = (
+                    (a - along).clamp(0.0, length),
+                    (b - along).clamp(0.0, length),
+                );
+                if a > from {
+                    stretches.push((w[0] + d * (from / length), w[0] + d * (a / length)));
+                }
+                from = from.max(b);
+            }
+            if length > from {
+                stretches.push((w[0] + d * (from / length), w[1]));
+            }
+            along += length;
+        }
+        if lifted.is_empty() && line.len() > 2 {
+            corners.extend_from_slice(&line[1..line.len() - 1]);
+        }
+    }
+    (stretches, corners)
+}
+
+/// Whether `p` lies within `half` of the stretch, square to it and between its ends.
+fn in_strip(p: Coord, (a, b): Stretch, half: f64) -> bool {
+    let d = b - a;
+    let l2 = d.x * d.x + d.y * d.y;
+    if l2 == 0.0 {
+        return false;
+    }
+    let t = ((p.x - a.x) * d.x + (p.y - a.y) * d.y) / l2;
+    let across = ((p.x - a.x) * d.y - (p.y - a.y) * d.x).abs() / l2.sqrt();
+    (0.0..=1.0).contains(&t) && across <= half
+}
+
+/// The share of the field worked, counted at points `step` metres apart (each point moved by a
+/// fixed irrational fraction of the step, off any grid the planner uses).
+fn independent_coverage(plan: &Plan, step: f64) -> f64 {
+    let half = plan.options.width / 2.0;
+    let (stretches, corners) = worked_stretches(plan);
+    let boundary = &plan.field.boundary;
+    let obstacles: Vec<&Polygon> = plan.field.obstacles.iter().map(|o| &o.polygon).collect();
+    let rect = geo::BoundingRect::bounding_rect(boundary).expect("bounds");
+    // Buckets of stretches by cell of a coarse grid, for the nearest-stretch search.
+    let size = (4.0 * half).max(step);
+    let key = |c: Coord| {
+        (
+            ((c.x - rect.min().x) / size).floor() as i64,
+            ((c.y - rect.min().y) / size).floor() as i64,
+        )
+    };
+    let mut buckets: std::collections::HashMap<(i64, i64), Vec<usize>> = Default::default();
+    for (k, &(a, b)) in stretches.iter().enumerate() {
+        let (lo, hi) = (
+            Coord {
+                x: a.x.min(b.x) - half,
+                y: a.y.min(b.y) - half,
+            },
+            Coord {
+                x: a.x.max(b.x) + half,
+                y: a.y.max(b.y) + half,
+            },
+        );
+        let ((i0, j0), (i1, j1)) = (key(lo), key(hi));
+        for i in i0..=i1 {
+            for j in j0..=j1 {
+                buckets.entry((i, j)).or_default().push(k);
+            }
+        }
+    }
+    let mut corner_buckets: std::collections::HashMap<(i64, i64), Vec<Coord>> = Default::default();
+    for &c in &corners {
+        corner_buckets.entry(key(c)).or_default().push(c);
+    }
+    let (mut inside, mut worked) = (0usize, 0usize);
+    let offset = (std::f64::consts::FRAC_1_PI * step, 0.577_215_664 * step);
+    let mut y = rect.min().y + offset.1;
+    while y < rect.max().y {
+        let mut x = rect.min().x + offset.0;
+        while x < rect.max().x {
+            let p = Coord { x, y };
+            if boundary.contains(&Point(p)) && !obstacles.iter().any(|o| o.contains(&Point(p))) {
+                inside += 1;
+                let (i, j) = key(p);
+                let near_stretch = buckets
+                    .get(&(i, j))
+                    .is_some_and(|ks| ks.iter().any(|&k| in_strip(p, stretches[k], half)));
+                let near_corner = || {
+                    (i - 1..=i + 1).any(|i| {
+                        (j - 1..=j + 1).any(|j| {
+                            corner_buckets.get(&(i, j)).is_some_and(|cs| {
+                                cs.iter().any(|c| (c.x - p.x).hypot(c.y - p.y) <= half)
+                            })
+                        })
+                    })
+                };
+                if near_stretch || near_corner() {
+                    worked += 1;
+                }
+            }
+            x += step;
+        }
+        y += step;
+    }
+    worked as f64 / inside.max(1) as f64
+}
+
+#[test]
+fn the_coverage_figure_agrees_with_an_independent_count_on_the_corpus() {
+    for field in common::corpus::valid_fields() {
+        let plan = plan_geojson(&field.text(), &field.options)
+            .unwrap_or_else(|e| panic!("{}: {e}", field.name));
+        let figure = plan.summary.coverage.coverage_ratio;
+        // About 40,000 points over the field's bounding box.
+        let rect = geo::BoundingRect::bounding_rect(&plan.field.boundary).expect("bounds");
+        let step = (rect.width() * rect.height() / 40_000.0).sqrt();
+        let counted = independent_coverage(&plan, step);
+        assert!(
+            (figure - counted).abs() <= 0.005,
+            "{}: the plan says {figure:.4} of the field is worked, the count {counted:.4}",
+            field.name
+        );
+        assert!(
+            plan.summary.coverage.reachable_ratio >= figure - 0.002,
+            "{}",
+            field.name
+        );
+    }
+}
+
+#[test]
+fn every_part_left_standing_is_a_feature_and_lies_in_the_field() {
+    let fields = common::corpus::valid_fields();
+    let field = fields
+        .iter()
+        .find(|f| f.name == "narrow-curved-strip")
+        .expect("corpus field");
+    let plan = plan_geojson(&field.text(), &field.options).unwrap();
+    let c = &plan.summary.coverage;
+    assert!(!c.uncovered.is_empty());
+    let listed: f64 = c.uncovered.iter().map(|u| u.area_m2).sum();
+    assert!(listed <= c.uncovered_area_m2 + 1e-6);
+    let json: serde_json::Value = serde_json::from_str(&plan.to_geojson_string()).unwrap();
+    let features = json["features"].as_array().unwrap();
+    let uncovered = features
+        .iter()
+        .filter(|f| f["properties"]["kind"] == "uncovered")
+        .count();
+    assert_eq!(uncovered, c.uncovered.len());
+    let grown = geo::Buffer::buffer(&plan.field.boundary, c.resolution_m);
+    for part in &c.uncovered {
+        assert!(
+            grown.contains(&part.polygon),
+            "a part left standing outside the field"
+        );
+        assert!(part.reachable_m2 <= part.area_m2);
+    }
+}
