@@ -415,7 +415,7 @@ fn print_help() {
         "  --{:<22} {:<13} an exit on the boundary lane (repeat for several)",
         "to", "<lon,lat>"
     );
-    println!("  --{:<22} {:<13} tracks (as driven, default), heading (no turning on the spot) or on-the-spot", "turning", "<name>");
+    println!("  --{:<22} {:<13} heading (no turning on the spot, default), tracks (only as driven) or on-the-spot", "turning", "<name>");
     println!("\nExit status: 0 planned; 2 invalid input (also over 32 MB or not UTF-8) or option (one JSON line on stderr); 1 file error.");
 }
 

@@ -628,14 +628,15 @@ export function plan(field: FieldInput, options?: PlanOptions): Plan;
 
 /**
  * How the machine may turn on its way along the tracks (Plessen & Bemporad 2016):
- * `"tracks"` only tracks as driven, changing track only where they meet at the same heading (the
- * repressed-area constraint; default); `"heading"` no turning on the spot: the first move follows
- * the heading, and at a junction any way but back (turns up to 135°); `"on-the-spot"` any way
- * anywhere (orchard-like areas).
+ * `"heading"` (default) no turning on the spot: the first move follows the heading, and at a
+ * junction any way but back (turns up to 135°); `"tracks"` only tracks as driven, changing track
+ * only where they meet at the same heading (the repressed-area constraint: on a coverage plan
+ * most ways out do not exist then); `"on-the-spot"` any way anywhere (orchard-like areas).
  */
 export type Turning = "tracks" | "heading" | "on-the-spot";
 
 export interface TrackPathOptions {
+  /** How the machine may turn. Default `"heading"`. */
   turning?: Turning;
   /** The plan's coordinates (as planned): longitude/latitude (default) or local metres. */
   coordinates?: "wgs84" | "metric";

@@ -453,3 +453,36 @@ fn input_over_32_mb_is_refused_unread() {
     assert_eq!(error_code(&out), "input_too_large");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// The middle of `rectangle.geojson` and its south-west corner.
+const RECTANGLE_MIDDLE: &str = "24.0522654435,60.2506744905";
+const RECTANGLE_SOUTH_WEST: &str = "24.05,60.25";
+
+#[test]
+fn a_way_out_is_found_without_a_turning_option() {
+    // From the middle of the rectangle facing north to its south-west corner: without turning
+    // on the spot there is a way; only along tracks as driven there is none.
+    let rect = field("rectangle.geojson");
+    let args = [
+        rect.as_str(),
+        "--from",
+        RECTANGLE_MIDDLE,
+        "--heading",
+        "0",
+        "--to",
+        RECTANGLE_SOUTH_WEST,
+    ];
+    let out = run(&args);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let path: serde_json::Value = serde_json::from_slice(&out.stdout).expect("a Feature");
+    assert_eq!(path["properties"]["turning"], "heading");
+    assert!(path["properties"]["length_m"]
+        .as_f64()
+        .is_some_and(|l| l > 0.0));
+    let strict = run(&[&args[..], &["--turning", "tracks"]].concat());
+    assert_eq!(error_code(&strict), "no_path");
+}

@@ -47,7 +47,9 @@ use geo::Coord;
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
 
-/// How the machine may change its way at a junction.
+/// How the machine may change its way at a junction. The default is [`Turning::Heading`]: with
+/// the strict [`Turning::Tracks`] most ways out of a coverage plan do not exist (its turns are
+/// U-turns in the headland, not junctions at the same heading).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Turning {
     /// It may turn on the spot (orchard-like areas, the paper's section II-A): any way at any
@@ -55,10 +57,10 @@ pub enum Turning {
     OnTheSpot,
     /// No turning on the spot (II-B): the first move follows the heading, and at a junction any
     /// way on that turns by less than [`MAX_JUNCTION_TURN`].
+    #[default]
     Heading,
     /// Only tracks already driven, as they were driven (III, the repressed-area constraint): at a
     /// junction only the ways on at the heading it came in with, within [`SMOOTH_TURN`].
-    #[default]
     Tracks,
 }
 
@@ -118,7 +120,7 @@ impl Default for TrackQuery {
             from: Coord { x: 0.0, y: 0.0 },
             heading: 0.0,
             targets: Vec::new(),
-            turning: Turning::Tracks,
+            turning: Turning::default(),
             monotone_band: false,
         }
     }
@@ -718,6 +720,12 @@ mod tests {
             (x, y) => assert_eq!(x, y),
         }
         a
+    }
+
+    #[test]
+    fn the_default_turning_is_no_turning_on_the_spot() {
+        assert_eq!(Turning::default(), Turning::Heading);
+        assert_eq!(TrackQuery::default().turning, Turning::Heading);
     }
 
     #[test]
