@@ -43,8 +43,8 @@ export type DirectionMode = "search" | "longest-edge" | "fixed" | "reference";
 
 /**
  * How the direction search steps: `"coarse-to-fine"` (Oksanen & Visala: six directions, refine
- * around the best three until under one degree; about 30 evaluations) or `"brute-force"` (every
- * direction at `searchStep`).
+ * around the best three at half the step until under one degree, and the directions of the
+ * longest edges; about 30 to 40 evaluations) or `"brute-force"` (every direction at `searchStep`).
  */
 export type SearchMethod = "coarse-to-fine" | "brute-force";
 

@@ -242,7 +242,7 @@ pub const OPTION_DOCS: &[(&str, &str, &str)] = &[
     (
         "search",
         "coarse-to-fine|brute-force",
-        "direction search: Oksanen's coarse-to-fine (about 36 directions) or every direction at searchStep (default coarse-to-fine)",
+        "direction search: Oksanen's coarse-to-fine (six directions, then around the best three at half the step until under a degree, and the longest edges: about 30 to 40 directions) or every direction at searchStep (default coarse-to-fine)",
     ),
     (
         "searchStep",

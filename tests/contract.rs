@@ -68,3 +68,24 @@ fn every_summary_member_and_option_is_typed_and_documented() {
         );
     }
 }
+
+#[test]
+fn the_direction_search_is_described_as_it_runs() {
+    // The command line's help, the TypeScript declarations and the README give the same count of
+    // directions the coarse-to-fine search evaluates, and the search evaluates about that many.
+    let (_, _, help) = OPTION_DOCS
+        .iter()
+        .find(|(key, _, _)| *key == "search")
+        .expect("the search option");
+    assert!(help.contains("about 30 to 40 directions"), "{help}");
+    assert!(read("src/bindings.d.ts").contains("about 30 to 40 evaluations"));
+    assert!(read("README.md").contains("about 30 to 40 evaluations"));
+    let options = PlanOptions::from_json_str(r#"{"decomposition": "none", "direction": "search"}"#)
+        .expect("options");
+    for file in ["rectangle", "l-shape", "h-shape"] {
+        let text = read(&format!("tests/fields/{file}.geojson"));
+        let plan = plan_geojson(&text, &options).expect("plans");
+        let n = plan.summary.direction.evaluations;
+        assert!((28..=40).contains(&n), "{file}: {n} directions");
+    }
+}
