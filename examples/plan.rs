@@ -13,8 +13,12 @@
 //! With `--from LON,LAT --heading DEG --to LON,LAT` it prints, instead of the plan, the shortest
 //! way along the plan's tracks from there to the nearest point of the boundary lane to `--to`
 //! (repeat `--to` for several exits; the nearest wins): a GeoJSON Feature with its `length_m`.
-//! `--turning tracks|heading|on-the-spot` says how the machine may turn (default `tracks`: only
-//! tracks as driven; see the README).
+//! `--turning heading|tracks|on-the-spot` says how the machine may turn (default `heading`: no
+//! turning on the spot; see the README).
+//!
+//! Positions are `x,y` (longitude,latitude) everywhere: `--entrance 24.05,60.25`, and the AB line
+//! `--reference-line 24.05,60.25,24.056,60.252` (A then B); the JSON form (`[24.05,60.25]`) works
+//! too.
 //!
 //! Exit status: 0 with a plan; 2 when the input or an option is invalid (the input too large or
 //! not UTF-8 text too), with one line of JSON `{"code": ..., "message": ...}` on standard error;
@@ -126,15 +130,74 @@ fn write_out(out: &Option<String>, text: &str) -> Result<(), Failure> {
 /// `LON,LAT` (or `x,y` in metres) as a position.
 fn position(flag: &str, text: Option<String>) -> Result<[f64; 2], Failure> {
     let text = text.ok_or_else(|| Failure::Usage(format!("--{flag} needs LON,LAT")))?;
-    let parts: Vec<f64> = text
-        .split(',')
-        .map(|p| p.trim().parse::<f64>())
-        .collect::<Result<_, _>>()
-        .map_err(|_| Failure::Usage(format!("--{flag} {text}: not LON,LAT")))?;
-    match parts[..] {
-        [x, y] if x.is_finite() && y.is_finite() => Ok([x, y]),
+    match numbers(&text).as_deref() {
+        Some(&[x, y]) => Ok([x, y]),
         _ => Err(Failure::Usage(format!("--{flag} {text}: not LON,LAT"))),
     }
+}
+
+/// Whether the flag is a yes-or-no one, `true` without a value.
+fn is_switch(flag: &str) -> bool {
+    let key = camel_case(flag);
+    matches!(flag, "pretty" | "summary")
+        || OPTION_DOCS
+            .iter()
+            .any(|(k, unit, _)| *k == key && *unit == "true|false")
+}
+
+/// Comma-separated finite numbers (`24.05,60.25`), or `None` when the text is anything else.
+fn numbers(text: &str) -> Option<Vec<f64>> {
+    text.split(',')
+        .map(|p| p.trim().parse::<f64>().ok().filter(|x| x.is_finite()))
+        .collect()
+}
+
+/// The planner options that are positions, with how many positions each holds: on the command
+/// line they are written `x,y` (`x,y,x,y` for two), as well as in JSON.
+const POSITION_OPTIONS: &[(&str, usize)] = &[("entrance", 1), ("exit", 1), ("referenceLine", 2)];
+
+/// The value of the planner option `key` (`--flag`) as JSON.
+fn option_value(flag: &str, key: &str, text: Option<String>) -> Result<Value, Failure> {
+    let unit = OPTION_DOCS
+        .iter()
+        .find(|(k, _, _)| *k == key)
+        .map(|(_, unit, _)| *unit);
+    let Some(text) = text else {
+        // A bare flag is `true` for a yes-or-no option (and for an unknown one, which the
+        // options then refuse by its name); any other option needs its value.
+        return match unit {
+            Some(unit) if unit != "true|false" => Err(invalid_option(format!(
+                "--{flag} needs a value: --{flag} <{unit}>"
+            ))),
+            _ => Ok(Value::Bool(true)),
+        };
+    };
+    let positions = POSITION_OPTIONS
+        .iter()
+        .find(|(k, _)| *k == key)
+        .map(|(_, n)| *n);
+    match positions {
+        Some(n) if !text.trim_start().starts_with('[') && text.trim() != "null" => {
+            let xy = numbers(&text)
+                .filter(|xy| xy.len() == 2 * n)
+                .ok_or_else(|| {
+                    let form = if n == 1 { "x,y" } else { "x,y,x,y" };
+                    invalid_option(format!(
+                        "--{flag} {text}: expected {form} (numbers separated by commas, in the input's coordinates, such as {})",
+                        if n == 1 { "24.05,60.25" } else { "24.05,60.25,24.056,60.252" }
+                    ))
+                })?;
+            Ok(match xy[..] {
+                [x, y] => serde_json::json!([x, y]),
+                _ => Value::Array(xy.chunks(2).map(|p| serde_json::json!(p)).collect()),
+            })
+        }
+        _ => Ok(flag_value(&text)),
+    }
+}
+
+fn invalid_option(message: String) -> Failure {
+    Failure::Invalid(PlanError::new(ErrorCode::InvalidOption, message))
 }
 
 fn parse_args(args: &[String]) -> Result<Command, Failure> {
@@ -153,14 +216,19 @@ fn parse_args(args: &[String]) -> Result<Command, Failure> {
             }
             continue;
         };
-        // `--flag=value` or `--flag value`; a flag without a value is `true`.
+        // `--flag=value` or `--flag value`.
         let (name, inline) = match flag.split_once('=') {
             Some((n, v)) => (n, Some(v.to_string())),
             None => (flag, None),
         };
+        // A switch (`--summary`, `--reverse`) takes only `true` or `false` after it, so that
+        // `--reverse FIELD` leaves the field alone.
+        let takes = |next: &String| {
+            !next.starts_with("--") && (!is_switch(name) || next == "true" || next == "false")
+        };
         let value = match inline {
             Some(v) => Some(v),
-            None if args.get(i).is_some_and(|next| !next.starts_with("--")) => {
+            None if args.get(i).is_some_and(takes) => {
                 i += 1;
                 Some(args[i - 1].clone())
             }
@@ -194,8 +262,9 @@ fn parse_args(args: &[String]) -> Result<Command, Failure> {
                 })?);
             }
             _ => {
-                let v = value.map_or(Value::Bool(true), |v| flag_value(&v));
-                options.insert(camel_case(name), v);
+                let key = camel_case(name);
+                let v = option_value(name, &key, value)?;
+                options.insert(key, v);
             }
         }
     }
@@ -293,18 +362,20 @@ fn kebab_case(camel: &str) -> String {
     out
 }
 
-/// serde names options in camelCase; on the command line they are flags.
+/// serde names options in camelCase; on the command line they are flags. Only option names
+/// become flags: the unknown one and the known ones serde lists, not quoted values.
 fn kebab_message(message: &str) -> String {
     let mut out = String::new();
-    let mut parts = message.split('`');
-    if let Some(first) = parts.next() {
-        out.push_str(first);
-    }
-    for (k, part) in parts.enumerate() {
-        if k % 2 == 0 {
-            out.push_str("`--");
-            out.push_str(&kebab_case(part));
+    for (k, part) in message.split('`').enumerate() {
+        if k > 0 {
             out.push('`');
+        }
+        let quoted = k % 2 == 1;
+        let name =
+            out.ends_with("unknown field `") || OPTION_DOCS.iter().any(|(key, _, _)| *key == part);
+        if quoted && name {
+            out.push_str("--");
+            out.push_str(&kebab_case(part));
         } else {
             out.push_str(part);
         }
@@ -432,6 +503,59 @@ fn to_json<T: serde::Serialize>(value: &T, pretty: bool) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn positions_are_x_comma_y() {
+        let value = |key: &str, text: &str| option_value(key, key, Some(text.into())).ok();
+        let point = serde_json::json!([24.05, 60.25]);
+        assert_eq!(value("entrance", "24.05,60.25"), Some(point.clone()));
+        assert_eq!(value("exit", " 24.05, 60.25 "), Some(point.clone()));
+        assert_eq!(value("entrance", "[24.05,60.25]"), Some(point));
+        assert_eq!(value("entrance", "null"), Some(Value::Null));
+        assert_eq!(
+            value("referenceLine", "1,2,3,4"),
+            Some(serde_json::json!([[1.0, 2.0], [3.0, 4.0]]))
+        );
+        for (key, text) in [
+            ("entrance", "24.05"),
+            ("entrance", "24.05,60.25,1"),
+            ("exit", "24.05,north"),
+            ("entrance", "NaN,1"),
+            ("referenceLine", "1,2"),
+        ] {
+            assert!(value(key, text).is_none(), "{key} {text}");
+        }
+    }
+
+    #[test]
+    fn only_switches_go_without_a_value() {
+        assert_eq!(
+            option_value("reverse", "reverse", None).ok(),
+            Some(Value::Bool(true))
+        );
+        let Err(Failure::Invalid(e)) = option_value("width", "width", None) else {
+            panic!("--width without a value is refused");
+        };
+        assert_eq!(e.code, ErrorCode::InvalidOption);
+        assert_eq!(e.message, "--width needs a value: --width <metres>");
+        assert!(is_switch("reverse") && is_switch("summary") && !is_switch("width"));
+    }
+
+    #[test]
+    fn messages_name_flags_not_values() {
+        assert_eq!(
+            kebab_message("unknown field `widht`, expected one of `width`, `headlandPasses`"),
+            "unknown field `--widht`, expected one of `--width`, `--headland-passes`"
+        );
+        assert_eq!(
+            kebab_message("invalid type: boolean `true`, expected f64"),
+            "invalid type: boolean `true`, expected f64"
+        );
+        assert_eq!(
+            kebab_message("invalid value: integer `-1`, expected u32"),
+            "invalid value: integer `-1`, expected u32"
+        );
+    }
 
     #[test]
     fn flag_names_and_values() {

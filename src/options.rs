@@ -261,8 +261,8 @@ pub const OPTION_DOCS: &[(&str, &str, &str)] = &[
     ),
     (
         "referenceLine",
-        "[[x,y],[x,y]]",
-        "AB line in the input's coordinates: swaths run along it on a grid one width apart through it (default none)",
+        "x,y,x,y",
+        "AB line, its two points A and B in the input's coordinates: swaths run along it on a grid one width apart through it (default none)",
     ),
     (
         "referenceEdge",
@@ -326,12 +326,12 @@ pub const OPTION_DOCS: &[(&str, &str, &str)] = &[
     ),
     (
         "entrance",
-        "[x,y]",
+        "x,y",
         "where the machine enters the field, in the input's coordinates, within 10 km of the boundary: the route starts there (default: at the first swath)",
     ),
     (
         "exit",
-        "[x,y]",
+        "x,y",
         "where the machine leaves the field, in the input's coordinates, within 10 km of the boundary: the route ends there (default: where the work ends)",
     ),
     (

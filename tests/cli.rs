@@ -486,3 +486,163 @@ fn a_way_out_is_found_without_a_turning_option() {
     let strict = run(&[&args[..], &["--turning", "tracks"]].concat());
     assert_eq!(error_code(&strict), "no_path");
 }
+
+/// The plan's features (the summary holds the time planning took, which varies).
+fn plan_features(args: &[&str]) -> serde_json::Value {
+    let out = run(args);
+    assert!(
+        out.status.success(),
+        "{args:?}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let plan: serde_json::Value = serde_json::from_slice(&out.stdout).expect("a plan");
+    plan["features"].clone()
+}
+
+#[test]
+fn positions_are_written_x_comma_y_or_in_json() {
+    let rect = field("rectangle.geojson");
+    let comma = plan_features(&[
+        &rect,
+        "--entrance",
+        "24.0545,60.2507",
+        "--exit",
+        "24.05,60.2513",
+        "--reference-line",
+        "24.05,60.25,24.0545,60.2513",
+    ]);
+    let json = plan_features(&[
+        &rect,
+        "--entrance",
+        "[24.0545,60.2507]",
+        "--exit",
+        "[24.05,60.2513]",
+        "--reference-line",
+        "[[24.05,60.25],[24.0545,60.2513]]",
+    ]);
+    assert_eq!(comma, json);
+    // The route starts at the entrance.
+    let first = comma
+        .as_array()
+        .and_then(|f| f.iter().find(|f| f["properties"]["sequence"] == 0))
+        .expect("the first drivable feature");
+    assert_eq!(
+        first["geometry"]["coordinates"][0],
+        serde_json::json!([24.0545, 60.2507])
+    );
+    // What is neither is refused, saying the form.
+    for (flag, value) in [
+        ("--entrance", "24.05"),
+        ("--exit", "24.05;60.25"),
+        ("--reference-line", "24.05,60.25"),
+    ] {
+        let out = run(&[&rect, flag, value]);
+        assert_eq!(error_code(&out), "invalid_option", "{flag} {value}");
+        let e: serde_json::Value = serde_json::from_slice(&out.stderr).expect("JSON line");
+        assert!(
+            e["message"].as_str().is_some_and(|m| m.contains("x,y")),
+            "{e}"
+        );
+    }
+}
+
+#[test]
+fn an_option_without_its_value_says_so() {
+    let rect = field("rectangle.geojson");
+    for args in [
+        vec![rect.as_str(), "--width"],
+        vec![rect.as_str(), "--width", "--summary"],
+        vec![rect.as_str(), "--entrance"],
+        vec![rect.as_str(), "--turn-radius", "--summary"],
+    ] {
+        let out = run(&args);
+        assert_eq!(error_code(&out), "invalid_option", "{args:?}");
+        let e: serde_json::Value = serde_json::from_slice(&out.stderr).expect("JSON line");
+        let message = e["message"].as_str().expect("message");
+        assert!(message.contains("needs a value"), "{message}");
+        assert!(!message.contains("true"), "{message}");
+    }
+    // A yes-or-no option needs none, and leaves the field after it alone.
+    let out = run(&["--reverse", &rect, "--summary"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
+
+/// The words of a shell command as the README writes them: plain words, '...' and "...".
+fn shell_words(line: &str) -> Vec<String> {
+    let mut words = Vec::new();
+    let mut word: Option<String> = None;
+    let mut quote = None;
+    for c in line.chars() {
+        match (quote, c) {
+            (Some(q), c) if c == q => quote = None,
+            (Some(_), c) => word.get_or_insert_with(String::new).push(c),
+            (None, '\'' | '"') => {
+                quote = Some(c);
+                word.get_or_insert_with(String::new);
+            }
+            (None, c) if c.is_whitespace() => words.extend(word.take()),
+            (None, c) => {
+                assert!(
+                    !"|<>;&$`*?#".contains(c),
+                    "README command with shell syntax ({c}): {line}"
+                );
+                word.get_or_insert_with(String::new).push(c);
+            }
+        }
+    }
+    assert!(quote.is_none(), "unclosed quote: {line}");
+    words.extend(word);
+    words
+}
+
+/// The arguments of every command-line example in the README's `sh` blocks.
+fn readme_cli_examples() -> Vec<Vec<String>> {
+    const CLI: &str = "cargo run --release --example plan --";
+    let readme = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/README.md"))
+        .expect("README.md");
+    let mut commands = Vec::new();
+    let (mut in_sh, mut command) = (false, String::new());
+    for line in readme.lines() {
+        if line.starts_with("```") {
+            in_sh = line == "```sh";
+            continue;
+        }
+        if !in_sh {
+            continue;
+        }
+        command.push_str(line.trim_end_matches('\\'));
+        if line.ends_with('\\') {
+            command.push(' ');
+            continue;
+        }
+        if let Some(args) = command.trim().strip_prefix(CLI) {
+            commands.push(shell_words(args));
+        }
+        command.clear();
+    }
+    commands
+}
+
+#[test]
+fn the_readme_cli_examples_run() {
+    let commands = readme_cli_examples();
+    assert!(commands.len() >= 3, "{commands:?}");
+    for args in commands {
+        let out = plan_cli()
+            .current_dir(env!("CARGO_MANIFEST_DIR"))
+            .args(&args)
+            .output()
+            .expect("runs");
+        assert!(
+            out.status.success(),
+            "{args:?}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let json: serde_json::Value = serde_json::from_slice(&out.stdout).expect("JSON");
+        assert!(json.is_object(), "{args:?}");
+    }
+}
