@@ -30,10 +30,28 @@ test("package.json describes the package", () => {
   assert.equal(pkg.name, "furrow");
   assert.equal(pkg.type, "module");
   assert.equal(pkg.types, "furrow.d.ts");
+  assert.equal(pkg.license, "MIT OR Apache-2.0");
   for (const file of pkg.files) assert.ok(existsSync(new URL(file, pkgUrl)), file);
+  for (const licence of ["LICENSE-MIT", "LICENSE-APACHE"]) {
+    assert.ok(pkg.files.includes(licence), licence);
+    assert.equal(
+      readFileSync(new URL(licence, pkgUrl), "utf8"),
+      readFileSync(new URL(`../${licence}`, import.meta.url), "utf8"),
+    );
+  }
+  assert.equal(pkg.exports["./package.json"], "./package.json");
+  assert.match(pkg.engines.node, /^>=\d+/);
+  assert.ok(
+    Number(process.versions.node.split(".")[0]) >= Number(pkg.engines.node.match(/\d+/)[0]),
+    "this Node is one the package claims",
+  );
+  // The repository's address, where Cargo.toml gives one.
+  const cargo = readFileSync(new URL("../Cargo.toml", import.meta.url), "utf8");
+  const repository = cargo.match(/^repository = "(.*)"$/m)?.[1];
+  if (repository) assert.equal(pkg.repository.url, `git+${repository}.git`);
 });
 
-test("TypeScript definitions declare the API and its types", () => {
+test("TypeScript definitions declare the API and export every type", () => {
   const entry = readFileSync(new URL("furrow.d.ts", pkgUrl), "utf8");
   for (const name of ["plan", "defaultOptions", "version", "initSync", "default", "Plan", "PlanOptions", "FurrowError", "TrackGraph", "shortestPath", "TrackPathFeature", "Turning"]) {
     assert.match(entry, new RegExp(`\\b${name}\\b`), `furrow.d.ts re-exports ${name}`);

@@ -22,25 +22,35 @@ rm -rf pkg
 wasm-bindgen --target web --out-name furrow_wasm --experimental-reset-state-function \
   --remove-name-section --remove-producers-section \
   --out-dir pkg target/wasm32-unknown-unknown/release/furrow.wasm
-cp js/furrow.js js/furrow.d.ts pkg/
+cp js/furrow.js js/furrow.d.ts LICENSE-MIT LICENSE-APACHE pkg/
 # Debian's wasm-opt (binaryen 108) produces a module that fails to load: never run it here.
 
 version=$(awk -F'"' '/^version = / { print $2; exit }' Cargo.toml)
+# The repository's address, from Cargo.toml's `repository` when it has one.
+repository=$(awk -F'"' '/^repository = / { print $2; exit }' Cargo.toml)
+repository_json=""
+if [ -n "$repository" ]; then
+  repository_json="\"repository\": { \"type\": \"git\", \"url\": \"git+$repository.git\" },"
+fi
+# engines: the oldest Node the package tests pass on (pkg-tests/node.test.mjs with Node 18.20).
 cat > pkg/package.json <<JSON
 {
   "name": "furrow",
   "version": "$version",
   "description": "Coverage path planning for farm machines, in WebAssembly: headland passes, swaths, blocks, routes and paths from a GeoJSON field",
   "license": "MIT OR Apache-2.0",
+  $repository_json
   "type": "module",
   "main": "furrow.js",
   "module": "furrow.js",
   "types": "furrow.d.ts",
   "exports": {
     ".": { "types": "./furrow.d.ts", "default": "./furrow.js" },
-    "./furrow_wasm_bg.wasm": "./furrow_wasm_bg.wasm"
+    "./furrow_wasm_bg.wasm": "./furrow_wasm_bg.wasm",
+    "./package.json": "./package.json"
   },
-  "files": ["furrow.js", "furrow.d.ts", "furrow_wasm.js", "furrow_wasm.d.ts", "furrow_wasm_bg.wasm", "furrow_wasm_bg.wasm.d.ts", "README.md"],
+  "files": ["furrow.js", "furrow.d.ts", "furrow_wasm.js", "furrow_wasm.d.ts", "furrow_wasm_bg.wasm", "furrow_wasm_bg.wasm.d.ts", "README.md", "LICENSE-MIT", "LICENSE-APACHE"],
+  "engines": { "node": ">=18" },
   "sideEffects": false,
   "keywords": ["agriculture", "coverage path planning", "geojson", "wasm", "tractor"]
 }

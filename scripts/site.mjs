@@ -43,7 +43,7 @@ async function walk(dir, prefix) {
   for (const entry of await readdir(dir, { withFileTypes: true })) {
     const path = prefix ? `${prefix}/${entry.name}` : entry.name;
     if (entry.isDirectory()) await walk(join(dir, entry.name), path);
-    else if (path !== "sw.js" && path !== "precache.json" && !path.endsWith(".d.ts") && !path.endsWith(".md")) files.push(path);
+    else if (path !== "sw.js" && path !== "precache.json" && !path.endsWith(".d.ts") && !path.endsWith(".md") && !path.includes("/LICENSE-")) files.push(path);
   }
 }
 await walk(out, "");
