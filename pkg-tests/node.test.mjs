@@ -1,7 +1,12 @@
-// The built npm package (pkg/) as a Node app uses it: initSync with the wasm bytes, then plan.
+// The built npm package (pkg/) as a Node app uses it: initSync with the wasm bytes, then plan;
+// and as installed from npm, in fresh Node processes: the README's Node example as written,
+// init() reading the file, calls before init.
 import { test } from "node:test";
 import assert from "node:assert/strict";
-import { existsSync, readFileSync, readdirSync } from "node:fs";
+import { execFileSync } from "node:child_process";
+import { copyFileSync, existsSync, readFileSync, readdirSync, rmSync, writeFileSync } from "node:fs";
+import { join } from "node:path";
+import { codeBlocks, installPacked } from "./install.mjs";
 
 const pkgUrl = new URL("../pkg/", import.meta.url);
 const fieldsUrl = new URL("../tests/fields/", import.meta.url);
@@ -56,11 +61,21 @@ test("TypeScript definitions declare the API and export every type", () => {
   for (const name of ["plan", "defaultOptions", "version", "initSync", "default", "Plan", "PlanOptions", "FurrowError", "TrackGraph", "shortestPath", "TrackPathFeature", "Turning"]) {
     assert.match(entry, new RegExp(`\\b${name}\\b`), `furrow.d.ts re-exports ${name}`);
   }
+  assert.match(entry, /export declare class FurrowError extends Error/);
   const dts = readFileSync(new URL("furrow_wasm.d.ts", pkgUrl), "utf8");
   assert.match(dts, /export function plan\(field: FieldInput, options\?: PlanOptions\): Plan;/);
-  for (const name of ["PlanOptions", "Plan", "PlanSummary", "PlanFeature", "FurrowError", "ErrorCode"]) {
-    assert.match(dts, new RegExp(`export (interface|type) ${name}\\b`), name);
-  }
+  // Every type, class and function of the wasm module's API is exported by the package's entry
+  // (wasm-bindgen's own __wbg functions aside).
+  const names = [...dts.matchAll(/^export (?:interface|type|class|function) (\w+)/gm)]
+    .map((m) => m[1])
+    .filter((name) => !name.startsWith("__wbg"));
+  assert.ok(names.length > 30, names.join());
+  const exported = new Set([
+    ...[...entry.matchAll(/^export (?:type )?\{([^}]*)\}/gm)].flatMap((m) => m[1].split(",").map((n) => n.trim())),
+    ...[...entry.matchAll(/^export (?:declare )?(?:interface|type|class|function) (\w+)/gm)].map((m) => m[1]),
+  ]);
+  for (const name of names) assert.ok(exported.has(name), `furrow.d.ts exports ${name}`);
+  assert.doesNotMatch(entry + readFileSync(new URL("furrow.js", pkgUrl), "utf8"), /__panic|ForTests/);
   // Every option the planner knows is typed.
   for (const key of Object.keys(furrow.defaultOptions())) {
     assert.match(dts, new RegExp(`\\b${key}\\?:`), `option ${key}`);
@@ -146,10 +161,25 @@ test("invalid inputs throw a FurrowError with a code", () => {
     const text = readFileSync(new URL(`invalid/${file}`, fieldsUrl), "utf8");
     assert.throws(
       () => furrow.plan(text),
-      (e) => e instanceof Error && e.name === "FurrowError" && e.code === expected[file],
+      (e) => e instanceof furrow.FurrowError && e.name === "FurrowError" && e.code === expected[file],
       file,
     );
   }
+  // The place in the input comes along, and the stack leads to the caller.
+  const bowtie = { type: "Polygon", coordinates: [[[0, 0], [1, 1], [1, 0], [0, 1], [0, 0]]] };
+  assert.throws(
+    () => furrow.plan(bowtie),
+    (e) =>
+      e instanceof furrow.FurrowError &&
+      e instanceof Error &&
+      e.code === "self_intersection" &&
+      e.coordinate.length === 2 &&
+      e.message.length > 0 &&
+      String(e).startsWith("FurrowError: ") &&
+      e.stack.includes("node.test.mjs"),
+  );
+  const made = new furrow.FurrowError("a message", { code: "no_path", feature: 2 });
+  assert.deepEqual([made.name, made.code, made.feature, made.ring, made.message], ["FurrowError", "no_path", 2, undefined, "a message"]);
   assert.throws(() => furrow.plan(readField("rectangle.geojson"), { width: -1 }), { code: "option_out_of_range" });
   assert.throws(() => furrow.plan(readField("rectangle.geojson"), { widht: 3 }), { code: "invalid_option" });
 });
@@ -161,20 +191,32 @@ test("the instance keeps planning after errors", () => {
   assert.equal(furrow.plan(readField("square-1ha.geojson")).type, "FeatureCollection");
 });
 
-test("a panic inside the planner is reported and the planner recovers", () => {
+test("a trap inside the planner is reported and the planner recovers", () => {
   const field = readField("square-1ha.geojson");
   const before = furrow.plan(field);
-  // console_error_panic_hook prints the panic; keep the test output clean.
-  const error = console.error;
-  console.error = () => {};
+  // No input makes the planner trap. To see the recovery, the clock the planner reads (through
+  // performance.now) throws a RuntimeError, as a trap does, part-way through a plan: the
+  // instance is left mid-call, as after a trap.
+  // (An own property over the prototype's, which is read-only in Node 18.)
+  const now = performance.now;
+  let calls = 0;
+  Object.defineProperty(performance, "now", {
+    configurable: true,
+    value() {
+      if (++calls === 2) throw new WebAssembly.RuntimeError("unreachable");
+      return now.call(this);
+    },
+  });
   try {
     assert.throws(
-      () => furrow.__panicForTests(),
-      (e) => e.name === "FurrowError" && e.code === "internal" && e.cause instanceof WebAssembly.RuntimeError,
+      () => furrow.plan(field),
+      (e) => e instanceof furrow.FurrowError && e.code === "internal" && e.cause instanceof WebAssembly.RuntimeError,
     );
   } finally {
-    console.error = error;
+    delete performance.now;
   }
+  assert.equal(performance.now, now);
+  assert.equal(calls, 2, "the planner read the clock");
   // A fresh instance plans the same field to the same plan.
   const after = furrow.plan(field);
   assert.equal(after.summary.swath_count, before.summary.swath_count);
@@ -193,6 +235,9 @@ test("shortest paths along the tracks: TrackGraph and shortestPath", () => {
   const middle = [(a[0] + b[0]) / 2, (a[1] + b[1]) / 2];
   const exit = field.features[0].geometry.coordinates[0][0];
   const lengths = {};
+  // Without options: no turning on the spot.
+  const plain = tracks.shortestPath(middle, swath.properties.bearing_deg, exit);
+  assert.equal(plain.properties.turning, "heading");
   for (const turning of ["on-the-spot", "heading", "tracks"]) {
     let path;
     try {
@@ -217,7 +262,7 @@ test("shortest paths along the tracks: TrackGraph and shortestPath", () => {
     try {
       f();
     } catch (e) {
-      assert.equal(e.name, "FurrowError");
+      assert.ok(e instanceof furrow.FurrowError, String(e));
       return e.code;
     }
     return null;
@@ -227,4 +272,52 @@ test("shortest paths along the tracks: TrackGraph and shortestPath", () => {
   assert.equal(code(() => tracks.shortestPath("here", 0, exit)), "invalid_option");
   assert.equal(code(() => new furrow.TrackGraph({ type: "FeatureCollection" })), "invalid_geojson");
   tracks.free();
+});
+
+/** Runs `script` (an ES module) with Node in `dir`; its standard output. */
+function node(dir, script, file = "main.mjs") {
+  writeFileSync(join(dir, file), script);
+  return execFileSync(process.execPath, [file], { cwd: dir, encoding: "utf8", stdio: ["ignore", "pipe", "pipe"] });
+}
+
+test("the package as installed: the README's Node example as written, and calls before init", () => {
+  const { dir, files } = installPacked("node");
+  for (const file of ["furrow.js", "furrow_wasm.js", "furrow_wasm_bg.wasm", "furrow.d.ts", "LICENSE-MIT", "LICENSE-APACHE"]) {
+    assert.ok(files.includes(file), `the package holds ${file}`);
+  }
+  // The README's example that reads field.geojson, run as it is written.
+  const readme = readFileSync(new URL("../js/README.md", import.meta.url), "utf8");
+  const example = codeBlocks(readme, "js").find((block) => block.includes('from "node:fs"'));
+  assert.ok(example, "js/README.md has a Node example");
+  copyFileSync(new URL("rectangle.geojson", fieldsUrl), join(dir, "field.geojson"));
+  assert.match(node(dir, example), /^22 swaths, \d+ m\n$/);
+  // Before init: a FurrowError that says what to do. initSync() without arguments reads the file
+  // where Node has process.getBuiltinModule (20.16 on), and says what it needs elsewhere.
+  const before = node(
+    dir,
+    `import init, { plan, version, initSync, FurrowError } from "furrow";
+    for (const call of [() => plan("{}"), () => version(), () => initSync()]) {
+      try {
+        call();
+      } catch (e) {
+        console.log(e instanceof FurrowError, e.code, e.message);
+      }
+    }
+    if (typeof process.getBuiltinModule !== "function") await init();
+    console.log(version());`,
+  );
+  const lines = before.trim().split("\n");
+  const sync = typeof process.getBuiltinModule === "function";
+  assert.equal(lines.length, sync ? 3 : 4, before);
+  for (const line of lines.slice(0, 2)) assert.match(line, /^true not_initialised .*init\(\).*initSync/);
+  if (!sync) assert.match(lines[2], /^true not_initialised initSync\(\) needs .*bytes/);
+  assert.match(lines.at(-1), /^\d+\.\d+\.\d+/);
+  // Without the .wasm file, init() says which file it could not read.
+  rmSync(join(dir, "node_modules/furrow/furrow_wasm_bg.wasm"));
+  const missing = node(
+    dir,
+    `import init, { FurrowError } from "furrow";
+    await init().catch((e) => console.log(e instanceof FurrowError, e.code, e.message));`,
+  );
+  assert.match(missing, /^true not_initialised could not read .*furrow_wasm_bg\.wasm/);
 });

@@ -574,7 +574,7 @@ export interface PathSamples {
   segment: Uint32Array;
 }
 
-/** The stable codes of errors thrown by `plan`. */
+/** The stable codes of the errors the package throws. */
 export type ErrorCode =
   | "invalid_json"
   | "invalid_geojson"
@@ -598,11 +598,14 @@ export type ErrorCode =
   | "coordinates_swapped"
   | "off_tracks"
   | "no_path"
+  | "not_initialised"
   | "internal";
 
-/** What `plan` throws: an Error named "FurrowError" with a stable code and the place in the input. */
-export interface FurrowError extends Error {
-  name: "FurrowError";
+/**
+ * What a `FurrowError` (the class of every error the package throws) carries besides its message:
+ * a stable code and, where the problem has one, the place in the input.
+ */
+export interface FurrowErrorDetails {
   code: ErrorCode;
   /** Index of the offending feature in the input's `features`. */
   feature?: number;

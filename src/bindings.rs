@@ -264,13 +264,6 @@ pub fn default_options() -> Result<JsValue, JsValue> {
     js_sys::JSON::parse(&text)
 }
 
-/// Panics on purpose, so that the package's tests can check that the JavaScript wrapper recovers
-/// from a trapped instance. Not part of the API.
-#[wasm_bindgen(js_name = __panicForTests, skip_typescript)]
-pub fn panic_for_tests() {
-    panic!("a deliberate panic, to test recovery");
-}
-
 /// The version of the planner.
 #[wasm_bindgen]
 pub fn version() -> String {

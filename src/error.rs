@@ -62,6 +62,9 @@ pub enum ErrorCode {
     /// A shortest path along the tracks: no way along them reaches the target with the turning
     /// allowed.
     NoPath,
+    /// JavaScript only: a function of the package was called before `init()` or `initSync()`
+    /// loaded the planner.
+    NotInitialised,
     /// A failure inside the planner that input should never cause; please report it.
     Internal,
 }
@@ -91,6 +94,7 @@ impl ErrorCode {
         ErrorCode::CoordinatesSwapped,
         ErrorCode::OffTracks,
         ErrorCode::NoPath,
+        ErrorCode::NotInitialised,
         ErrorCode::Internal,
     ];
 
@@ -119,6 +123,7 @@ impl ErrorCode {
             ErrorCode::CoordinatesSwapped => "coordinates_swapped",
             ErrorCode::OffTracks => "off_tracks",
             ErrorCode::NoPath => "no_path",
+            ErrorCode::NotInitialised => "not_initialised",
             ErrorCode::Internal => "internal",
         }
     }
