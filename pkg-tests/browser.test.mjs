@@ -1,11 +1,14 @@
 // The built npm package in a real browser: Debian's Chromium, driven by playwright-core, loads
 // pkg/furrow.js from a localhost server (streaming compile of application/wasm), plans every
-// corpus field and reports errors as FurrowErrors.
+// corpus field and reports errors as FurrowErrors; and an app bundled by esbuild as the
+// package's README says.
 import { test } from "node:test";
 import assert from "node:assert/strict";
-import { existsSync } from "node:fs";
-import { join } from "node:path";
+import { execFileSync } from "node:child_process";
+import { existsSync, mkdirSync, readFileSync, writeFileSync } from "node:fs";
+import { delimiter, join } from "node:path";
 import { startServer } from "../scripts/serve.mjs";
+import { codeBlocks, installLinked, ROOT } from "./install.mjs";
 import { launchChromium, SITE } from "./support.mjs";
 
 test("the package plans in Chromium", { timeout: 60_000 }, async () => {
@@ -86,6 +89,47 @@ test("the package plans in Chromium", { timeout: 60_000 }, async () => {
     assert.deepEqual(problems, []);
     const slowest = result.times.sort((a, b) => b[1] - a[1]).slice(0, 3);
     console.log(`# slowest plans in Chromium (ms, one run after warm-up): ${JSON.stringify(slowest)}`);
+  } finally {
+    await browser.close();
+    server.close();
+  }
+});
+
+test("an app bundled by esbuild as the package's README says plans in Chromium", { timeout: 60_000 }, async () => {
+  const dir = installLinked("esbuild");
+  writeFileSync(
+    join(dir, "app.js"),
+    `import init, { plan, FurrowError } from "furrow";
+    await init();
+    const field = { type: "Polygon", coordinates: [[[24.05, 60.25], [24.055, 60.25], [24.055, 60.252], [24.05, 60.252], [24.05, 60.25]]] };
+    let error;
+    try {
+      plan(field, { width: -1 });
+    } catch (e) {
+      error = e instanceof FurrowError && e.code;
+    }
+    window.result = { swaths: plan(field).summary.swath_count, error };`,
+  );
+  // The README's commands, as written, with the workspace's esbuild.
+  const readme = readFileSync(join(ROOT, "js/README.md"), "utf8");
+  const commands = codeBlocks(readme, "sh").find((block) => block.includes("esbuild "));
+  assert.ok(commands, "js/README.md shows the esbuild commands");
+  mkdirSync(join(dir, "dist"));
+  const PATH = `${join(ROOT, "node_modules/.bin")}${delimiter}${process.env.PATH}`;
+  execFileSync("bash", ["-euo", "pipefail", "-c", commands], { cwd: dir, env: { ...process.env, PATH }, stdio: "pipe" });
+  writeFileSync(join(dir, "dist/index.html"), `<!doctype html><script type="module" src="app.js"></script>`);
+  const server = await startServer(join(dir, "dist"), 0);
+  const browser = await launchChromium();
+  try {
+    const page = await browser.newPage();
+    const problems = [];
+    page.on("pageerror", (e) => problems.push(String(e)));
+    await page.goto(`http://127.0.0.1:${server.address().port}/`);
+    await page.waitForFunction(() => window.result, null, { timeout: 30_000 });
+    const result = await page.evaluate(() => window.result);
+    assert.ok(result.swaths > 0, JSON.stringify(result));
+    assert.equal(result.error, "option_out_of_range");
+    assert.deepEqual(problems, []);
   } finally {
     await browser.close();
     server.close();
