@@ -14,7 +14,7 @@
 //   abline      tap A, then B: the swaths run along the line from A to B
 //   edge        tap the boundary edge the swaths should run along
 //   parcel      a file of many parcels (a register's export): tap the one to plan
-//   way         the way out along the tracks: taps go to `onWayTap` (main.js asks the planner)
+//   way         the way out along the tracks: taps go to `onWayTap` (way.js asks the planner)
 //
 // Every change goes through the History (editor.js) and `onChange(doc, { final })`: `final` is
 // false while a vertex is dragged (plan it, do not keep it as a step yet) and true once it is a step.

@@ -1,0 +1,206 @@
+// Fields to plan: the bundled ones (fields/index.json, with their suggested settings), files
+// opened or dropped on the map, and the field and plan saved as GeoJSON files.
+import { history, notes, setPlanState, state, ui, view } from "./app.js";
+import { startEditing } from "./editing.js";
+import { initPlanner } from "./planner.js";
+import { replan, showFailure } from "./planning.js";
+import { fieldParts, fieldScene, inputFeatures, parseForDrawing, projectFeature, projectionFor } from "./scene.js";
+import { applySuggested, forgetFieldReferences } from "./settings.js";
+
+/** The value of the field picker's entry for an opened file. */
+export const OPENED = ":opened";
+const MAX_FILE_BYTES = 64 * 1024 * 1024; // the planner refuses more than 32 MB anyway
+const fieldCache = new Map(); // file -> Promise of the field GeoJSON
+
+/** Opening a file by dropping it on the map. Files dropped elsewhere are ignored, not opened by
+ * the browser in place of the viewer. */
+export function bindDrop(map) {
+  const hasFiles = (e) => [...(e.dataTransfer?.types ?? [])].includes("Files");
+  for (const type of ["dragenter", "dragover"]) {
+    map.addEventListener(type, (e) => {
+      if (!hasFiles(e)) return;
+      e.preventDefault();
+      e.dataTransfer.dropEffect = "copy";
+      map.classList.add("drop-target");
+    });
+  }
+  map.addEventListener("dragleave", (e) => {
+    if (!map.contains(e.relatedTarget)) map.classList.remove("drop-target");
+  });
+  map.addEventListener("drop", (e) => {
+    map.classList.remove("drop-target");
+    if (!hasFiles(e)) return;
+    e.preventDefault();
+    const file = e.dataTransfer.files?.[0];
+    if (file) openFile(file);
+  });
+  for (const type of ["dragover", "drop"]) {
+    window.addEventListener(type, (e) => {
+      if (!hasFiles(e) || map.contains(e.target)) return;
+      e.preventDefault();
+      e.dataTransfer.dropEffect = "none";
+    });
+  }
+}
+
+/** Reads a file and plans it as it is. */
+export async function openFile(file) {
+  const name = file.name.replace(/\.(geo)?json$/i, "") || file.name;
+  if (file.size > MAX_FILE_BYTES) {
+    const mb = Math.round(file.size / 1e6);
+    showFailure(`${file.name} is ${mb} MB: too large for a field (at most 32 MB).`, "file_too_large");
+    return;
+  }
+  let text;
+  try {
+    text = await file.text();
+  } catch (e) {
+    showFailure(`${file.name} could not be read: ${e.message ?? e}`, "file_unreadable");
+    return;
+  }
+  await loadField(text, name);
+}
+
+/**
+ * Shows and plans a field given as GeoJSON text or object, with the current settings. The text
+ * goes to the planner as it is, so a broken file gets the planner's own error; for drawing, as
+ * much of it as can be read is drawn. Resolves to `{ plan, error }`.
+ */
+export async function loadField(input, name = "Opened field", { edited = false } = {}) {
+  const token = ++state.loadToken;
+  setPlanState("loading");
+  try {
+    await initPlanner();
+  } catch (e) {
+    if (token === state.loadToken) showFailure(`The planner could not be loaded: ${e.message ?? e}`);
+    return { plan: null, error: state.error };
+  }
+  if (token !== state.loadToken) return { plan: null, error: null };
+  name = String(name || "Opened field");
+  state.opened = { source: input, name };
+  state.entry = { name, opened: true };
+  state.source = input;
+  state.field = typeof input === "string" ? parseForDrawing(input) : input;
+  if (!edited) forgetFieldReferences();
+  state.edited = edited;
+  openedOption(name);
+  ui.field.value = OPENED;
+  ui.field.disabled = false;
+  ui.suggested.disabled = true;
+  ui.note.textContent = edited ? "Drawn or edited here; planned with the settings below." : "Opened from a file; planned with the settings below.";
+  if (location.hash) window.history.replaceState(null, "", location.pathname + location.search);
+  startEditing(state.field, { edited });
+  showField(state.field);
+  return replan();
+}
+
+/** The field picker's entry for the opened file, first in the list. */
+export function openedOption(name) {
+  let option = ui.field.querySelector(`option[value="${OPENED}"]`);
+  if (!option) {
+    option = document.createElement("option");
+    option.value = OPENED;
+    ui.field.prepend(option);
+  }
+  option.textContent = state.edited ? `${name} (drawn here)` : `${name} (opened file)`;
+}
+
+/** Draws a field (whatever of it can be drawn) without a plan; the next plan fits the view. */
+export function showField(geojson) {
+  notes.hideError();
+  notes.clearWarnings();
+  state.errorHighlight = [];
+  let scene;
+  try {
+    const parts = fieldParts(geojson);
+    const features = inputFeatures(geojson);
+    state.projection = projectionFor(parts, features);
+    state.features = features.map((f) => projectFeature(f, state.projection));
+    scene = fieldScene(parts, state.projection);
+  } catch (e) {
+    // Drawing never stops the planner from saying what is wrong with the field.
+    console.warn("furrow viewer: the field could not be drawn", e);
+    state.projection = projectionFor({ boundary: null, obstacles: [], prohibited: [] });
+    state.features = [];
+    scene = { boundary: null, obstacles: [], prohibited: [], bounds: null };
+  }
+  view.projection = state.projection;
+  view.setField(scene, { fit: false });
+  state.fitPending = true;
+}
+
+/** Loads a field of the index by name, applies its suggested machine settings, fits and plans. */
+export async function selectField(name) {
+  const entry = state.fields.find((f) => f.name === name);
+  if (!entry) return;
+  const token = ++state.loadToken;
+  setPlanState("loading");
+  ui.field.value = entry.name;
+  ui.status.textContent = `Loading ${entry.name}…`;
+  let field;
+  try {
+    field = await loadFieldFile(entry.file);
+  } catch (e) {
+    if (token === state.loadToken) showFailure(`The field ${entry.name} could not be loaded: ${e.message ?? e}`);
+    return;
+  }
+  if (token !== state.loadToken) return; // another field was picked meanwhile
+  state.entry = entry;
+  state.field = field;
+  state.source = field;
+  startEditing(field);
+  ui.suggested.disabled = false;
+  ui.note.textContent = entry.note ?? "";
+  if (location.hash.slice(1) !== encodeURIComponent(entry.name)) {
+    window.history.replaceState(null, "", `#${encodeURIComponent(entry.name)}`);
+  }
+  applySuggested(entry);
+  showField(field);
+  replan();
+}
+
+export function loadFieldFile(file) {
+  if (!fieldCache.has(file)) {
+    const p = fetchJson(file);
+    p.catch(() => fieldCache.delete(file));
+    fieldCache.set(file, p);
+  }
+  return fieldCache.get(file);
+}
+
+export async function fetchJson(url) {
+  const res = await fetch(url);
+  if (!res.ok) throw new Error(`${url}: ${res.status} ${res.statusText}`);
+  return res.json();
+}
+
+export function fileName() {
+  return (state.entry?.name ?? "field").replace(/ \(edited\)$/, "-edited").replace(/[^\w.-]+/g, "-") || "field";
+}
+
+/** The field as GeoJSON text: the document as edited (a file opened and not edited comes back
+ * as it was read). */
+export function fieldText() {
+  const doc = history.doc;
+  return doc ? `${JSON.stringify(doc, null, 1)}\n` : "";
+}
+
+/** The plan as GeoJSON text (without the sampled path, which is not GeoJSON). */
+export function planText() {
+  if (!state.plan) return "";
+  const { samples, ...plan } = state.plan;
+  void samples;
+  return `${JSON.stringify(plan)}\n`;
+}
+
+export function download(name, text) {
+  if (!text) return;
+  const url = URL.createObjectURL(new Blob([text], { type: "application/geo+json" }));
+  const a = document.createElement("a");
+  a.href = url;
+  a.download = name;
+  document.body.append(a);
+  a.click();
+  a.remove();
+  setTimeout(() => URL.revokeObjectURL(url), 10_000);
+}
