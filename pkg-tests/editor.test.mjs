@@ -16,33 +16,16 @@ import {
   countColour,
   dataset,
   fieldPasses,
+  mapOrigin,
   planKey,
+  planned,
   ready,
   setInput,
+  vertexAt,
   withViewer,
 } from "./viewer-support.mjs";
 
 const DESKTOP = { viewport: { width: 1280, height: 800 }, deviceScaleFactor: 1 };
-
-/** The canvas's top-left corner in page px. */
-async function mapOrigin(page) {
-  const box = await page.locator("#map").boundingBox();
-  return { x: box.x, y: box.y, width: box.width, height: box.height };
-}
-
-/** Screen position (page px) of vertex `i` of the first ring of feature `feature` of the document. */
-async function vertexAt(page, feature, i) {
-  const o = await mapOrigin(page);
-  const [x, y] = await page.evaluate(
-    ([feature, i]) => {
-      const { tool, view } = window.furrow;
-      const ring = tool.rings().find((r) => r.feature === feature && r.ring === 0);
-      return view.toScreen(ring.world[i]);
-    },
-    [feature, i],
-  );
-  return { x: o.x + x, y: o.y + y };
-}
 
 /** The document's feature `feature`, first ring, without the closing point. */
 const ringOf = (page, feature) =>
@@ -52,15 +35,6 @@ const ringOf = (page, feature) =>
   }, feature);
 
 const docOf = (page) => page.evaluate(() => window.furrow.document);
-
-/** Waits until the plan drawn is that of the newest edit. */
-async function planned(page) {
-  await page.waitForFunction(
-    () => document.body.dataset.planState === "ready" && window.furrow.replans.made === window.furrow.replans.drawn,
-    null,
-    { timeout: 20_000 },
-  );
-}
 
 test("editor: draw a field with the mouse, add an obstacle and a region, edit, undo, keep it", { timeout: TIMEOUT }, async () => {
   mkdirSync(SHOTS, { recursive: true });

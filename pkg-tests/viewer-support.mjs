@@ -11,7 +11,18 @@ export const FIELDS = join(ROOT, "tests/fields");
 export const INVALID = join(FIELDS, "invalid");
 export const TIMEOUT = 60_000;
 
-/** Starts the server and the browser, runs `body(page, base)`, and always closes both. */
+/** Makes every Content-Security-Policy violation in the context's pages a console error (which
+ * the tests count as a problem), with the directive and what it refused. */
+export function reportCspViolations(context) {
+  return context.addInitScript(() => {
+    document.addEventListener("securitypolicyviolation", (e) => {
+      console.error(`CSP violation: ${e.effectiveDirective} refused ${e.blockedURI || "inline"} (${e.sourceFile}:${e.lineNumber})`);
+    });
+  });
+}
+
+/** Starts the server and the browser, runs `body(page, base)`, and always closes both. Console
+ * errors (CSP violations among them), page errors, failed or foreign requests fail the test. */
 export async function withViewer(contextOptions, body) {
   if (!existsSync(join(SITE, "pkg", "furrow.js")) || !existsSync(join(SITE, "index.html"))) {
     throw new Error("target/site/pkg or target/site/index.html is missing: run scripts/build.sh first");
@@ -21,6 +32,7 @@ export async function withViewer(contextOptions, body) {
   try {
     browser = await launchChromium();
     const context = await browser.newContext(contextOptions);
+    await reportCspViolations(context);
     const page = await context.newPage();
     const problems = [];
     page.on("console", (msg) => {
@@ -46,6 +58,21 @@ export async function withViewer(contextOptions, body) {
 
 export const ready = (page) => page.waitForSelector("body[data-plan-state=ready]", { timeout: 20_000 });
 export const dataset = (page) => page.evaluate(() => ({ ...document.body.dataset }));
+
+/** Waits until the plan drawn is that of the newest edit. */
+export async function planned(page) {
+  await page.waitForFunction(
+    () => document.body.dataset.planState === "ready" && window.furrow.replans.made === window.furrow.replans.drawn,
+    null,
+    { timeout: 20_000 },
+  );
+}
+
+/** The canvas's box in page px. */
+export async function mapOrigin(page) {
+  const box = await page.locator("#map").boundingBox();
+  return { x: box.x, y: box.y, width: box.width, height: box.height };
+}
 
 /** Number of canvas pixels within `tolerance` of the CSS colour of custom property `name`. */
 export function countColour(page, name, tolerance = 40) {
@@ -91,3 +118,16 @@ export const planKey = (page) =>
     return p ? JSON.stringify([p.summary.swath_count, p.summary.total_distance_m, p.features.length]) : null;
   });
 
+/** Screen position (page px) of vertex `i` of the first ring of feature `feature` of the document. */
+export async function vertexAt(page, feature, i) {
+  const o = await mapOrigin(page);
+  const [x, y] = await page.evaluate(
+    ([feature, i]) => {
+      const { tool, view } = window.furrow;
+      const ring = tool.rings().find((r) => r.feature === feature && r.ring === 0);
+      return view.toScreen(ring.world[i]);
+    },
+    [feature, i],
+  );
+  return { x: o.x + x, y: o.y + y };
+}

@@ -26,6 +26,7 @@ import {
   fieldPasses,
   planKey,
   ready,
+  reportCspViolations,
   setInput,
   withViewer,
 } from "./viewer-support.mjs";
@@ -758,7 +759,12 @@ test("viewer: with the server stopped, a reload still opens and plans (service w
   try {
     browser = await launchChromium();
     const context = await browser.newContext({ viewport: { width: 1280, height: 800 } });
+    await reportCspViolations(context);
     const page = await context.newPage();
+    const problems = [];
+    page.on("console", (msg) => {
+      if (msg.type() === "error") problems.push(`console error: ${msg.text()}`);
+    });
     const base = `http://127.0.0.1:${server.address().port}/`;
     await page.goto(`${base}#rectangle`);
     await ready(page);
@@ -784,6 +790,9 @@ test("viewer: with the server stopped, a reload still opens and plans (service w
     await page.selectOption("#field", "h-shape");
     await page.waitForFunction(() => window.furrow.field?.features?.[0]?.properties?.name === "h-shape");
     await ready(page);
+    // The page's Content-Security-Policy let all of it run, online and offline (the requests
+    // refused while the server is down are expected errors).
+    assert.deepEqual(problems.filter((p) => /CSP|Content.Security.Policy/i.test(p)), [], "CSP violations");
   } finally {
     await browser?.close();
     if (!stopped) await new Promise((ok) => server.close(ok));

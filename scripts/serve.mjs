@@ -4,6 +4,8 @@
 //   node scripts/serve.mjs [--root target/site] [--port 8080] [--host 127.0.0.1]
 //
 // Also imported by the browser tests: startServer(root, port) resolves to the listening server.
+// Every response carries the page's Content-Security-Policy (index.html's meta tag, plus
+// frame-ancestors); a request that is not a plain path gets 400, and no error's text is sent.
 import { createServer } from "node:http";
 import { readFile, stat } from "node:fs/promises";
 import { extname, join, normalize, resolve, sep } from "node:path";
@@ -26,14 +28,58 @@ const TYPES = {
   ".ts": "text/plain; charset=utf-8",
 };
 
-export function startServer(root, port = 8080, host = "127.0.0.1") {
+/**
+ * The path a request asks for, decoded, or null when the request target is not a plain path
+ * (an absolute URL, "//" and the like, a malformed %-escape, a NUL).
+ */
+export function requestPath(target) {
+  const raw = String(target ?? "").split(/[?#]/, 1)[0];
+  if (!/^\/(?!\/)/.test(raw)) return null;
+  let path;
+  try {
+    path = decodeURIComponent(raw);
+  } catch {
+    return null;
+  }
+  return path.includes("\0") ? null : path;
+}
+
+/** The Content-Security-Policy of a page's `<meta http-equiv>`, or null. */
+export function metaPolicy(html) {
+  const meta = /<meta\s+http-equiv="Content-Security-Policy"\s+content="([^"]*)"/i.exec(html);
+  return meta ? meta[1].replace(/&#39;|&apos;/g, "'").trim() : null;
+}
+
+/**
+ * The policy the server sends with every response: the page's own (index.html's meta tag, so
+ * that the two never differ), with `frame-ancestors`, which only a header can carry.
+ */
+async function headerPolicy(base) {
+  const html = await readFile(join(base, "index.html"), "utf8").catch(() => "");
+  const policy = metaPolicy(html);
+  return policy ? `${policy.replace(/;\s*$/, "")}; frame-ancestors 'none'` : null;
+}
+
+export async function startServer(root, port = 8080, host = "127.0.0.1") {
   const base = resolve(root);
+  const policy = await headerPolicy(base);
+  const security = {
+    ...(policy ? { "content-security-policy": policy } : {}),
+    "x-content-type-options": "nosniff",
+    "referrer-policy": "no-referrer",
+  };
+  const answer = (res, status, text) =>
+    res.writeHead(status, { ...security, "content-type": "text/plain; charset=utf-8" }).end(text);
   const server = createServer(async (req, res) => {
     try {
-      const url = new URL(req.url, "http://localhost");
-      let path = normalize(join(base, decodeURIComponent(url.pathname)));
+      const asked = requestPath(req.url);
+      if (asked == null) {
+        answer(res, 400, "bad request");
+        return;
+      }
+      let path = normalize(join(base, asked));
       if (path !== base && !path.startsWith(base + sep)) {
-        res.writeHead(403).end("forbidden");
+        answer(res, 403, "forbidden");
         return;
       }
       let info = await stat(path).catch(() => null);
@@ -41,22 +87,26 @@ export function startServer(root, port = 8080, host = "127.0.0.1") {
         path = join(path, "index.html");
         info = await stat(path).catch(() => null);
       }
-      if (!info && url.pathname === "/favicon.ico") {
-        res.writeHead(204).end(); // browsers ask for it on any page; not an error
+      if (!info && asked === "/favicon.ico") {
+        res.writeHead(204, security).end(); // browsers ask for it on any page; not an error
         return;
       }
       if (!info) {
-        res.writeHead(404, { "content-type": "text/plain" }).end("not found");
+        answer(res, 404, "not found");
         return;
       }
       const body = await readFile(path);
       res.writeHead(200, {
+        ...security,
         "content-type": TYPES[extname(path).toLowerCase()] ?? "application/octet-stream",
         "cache-control": "no-store",
       });
       res.end(req.method === "HEAD" ? undefined : body);
     } catch (e) {
-      res.writeHead(500, { "content-type": "text/plain" }).end(String(e));
+      // What went wrong is the server's to know, not the client's.
+      console.error(`serve: ${req.method} ${JSON.stringify(req.url)}: ${e?.stack ?? e}`);
+      if (!res.headersSent) answer(res, 500, "internal error");
+      else res.destroy();
     }
   });
   return new Promise((ok, fail) => {

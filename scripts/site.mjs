@@ -1,14 +1,20 @@
 // Assembles the viewer site in target/site: the page (www/), the wasm package (pkg/) and the
-// corpus fields (tests/fields/*.geojson) with an index of their suggested machine settings.
+// corpus fields (tests/fields/*.geojson) with an index of their suggested machine settings. The
+// page keeps its Content-Security-Policy meta tag (checked here).
 //
 //   node scripts/site.mjs   (after the package is built into pkg/)
 import { cp, mkdir, readdir, readFile, rm, writeFile } from "node:fs/promises";
 import { join } from "node:path";
+import { metaPolicy } from "./serve.mjs";
 
 const out = "target/site";
 await rm(out, { recursive: true, force: true });
 await mkdir(join(out, "fields"), { recursive: true });
 await cp("www", out, { recursive: true });
+// The page must carry its Content-Security-Policy (serve.mjs sends the same as a header).
+if (!metaPolicy(await readFile(join(out, "index.html"), "utf8"))) {
+  throw new Error("site: www/index.html has no Content-Security-Policy meta tag");
+}
 await cp("pkg", join(out, "pkg"), { recursive: true });
 
 // The README table: | file | area ha | vertices | obstacles | prohibited | width m | passes | radius m | note |

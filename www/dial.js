@@ -94,7 +94,11 @@ export class BearingDial {
     const doc = container.ownerDocument;
     const el = (name, attrs = {}, parent = null) => {
       const node = doc.createElementNS(SVG_NS, name);
-      for (const [k, v] of Object.entries(attrs)) node.setAttribute(k, String(v));
+      // Inline style through the CSSOM: a style attribute is refused by the page's CSP.
+      for (const [k, v] of Object.entries(attrs)) {
+        if (k === "style") node.style.cssText = String(v);
+        else node.setAttribute(k, String(v));
+      }
       parent?.appendChild(node);
       return node;
     };
