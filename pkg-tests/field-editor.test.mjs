@@ -6,6 +6,7 @@ import { join } from "node:path";
 import {
   History,
   addPolygon,
+  counterClockwise,
   deleteFeature,
   deleteVertex,
   editableRings,
@@ -20,6 +21,7 @@ import {
   setEntrance,
   setProperties,
   setReferenceLine,
+  signedArea2,
   toCollection,
 } from "../www/editor.js";
 import { FIELDS } from "./viewer-support.mjs";
@@ -138,6 +140,43 @@ test("polygons are added before the viewer's extras; a boundary replaces the bou
     role: "prohibited",
     forbidden_bearings_deg: [[80, 100]],
   });
+});
+
+test("a polygon drawn clockwise is kept counter-clockwise; a drag that turns a ring over leaves it as it ran", () => {
+  // Independent check: the shoelace sum over the closed ring as stored.
+  const shoelace = (closed) => closed.slice(1).reduce((a, p, i) => a + closed[i][0] * p[1] - p[0] * closed[i][1], 0);
+  const clockwise = [
+    [24.001, 60.009],
+    [24.009, 60.009],
+    [24.009, 60.001],
+    [24.001, 60.001],
+  ]; // top-left, top-right, bottom-right, bottom-left: as tapped on the map
+  assert.ok(signedArea2(clockwise) < 0);
+  const added = addPolygon(emptyField(), "boundary", clockwise);
+  const stored = ring(added.doc);
+  assert.ok(shoelace(stored) > 0, "stored counter-clockwise");
+  assert.deepEqual(stored[0], clockwise[0], "from the first corner tapped");
+  assert.deepEqual(new Set(stored.slice(0, -1).map(String)), new Set(clockwise.map(String)), "the same corners");
+  assert.deepEqual(counterClockwise(stored.slice(0, -1)), stored.slice(0, -1), "a counter-clockwise ring as it is");
+  for (const role of ["obstacle", "prohibited"]) {
+    const more = addPolygon(added.doc, role, clockwise.map(([x, y]) => [x / 2 + 12.002, y / 2 + 30.002]));
+    assert.ok(shoelace(ring(more.doc, more.feature)) > 0, `${role} stored counter-clockwise`);
+  }
+  // A triangle's corner dragged across its far side: the ring would run clockwise; it is mirrored
+  // about the dragged corner, which keeps its index and its new place.
+  const tri = addPolygon(emptyField(), "boundary", [
+    [24, 60],
+    [24.01, 60],
+    [24.005, 60.01],
+  ]).doc;
+  assert.ok(shoelace(ring(tri)) > 0);
+  const moved = moveVertex(tri, ref, 2, [24.005, 59.99]);
+  assert.ok(shoelace(ring(moved)) > 0, "still counter-clockwise");
+  assert.deepEqual(ring(moved)[2], [24.005, 59.99], "the dragged corner keeps its index");
+  assert.deepEqual(new Set(ring(moved).slice(0, -1).map(String)), new Set(["24,60", "24.01,60", "24.005,59.99"]));
+  // A clockwise ring from a file stays clockwise when a corner moves (the file's own order).
+  const cw = toCollection({ type: "Polygon", coordinates: [[...clockwise, clockwise[0]]] });
+  assert.ok(shoelace(ring(moveVertex(cw, ref, 1, [24.0095, 60.0095]))) < 0);
 });
 
 test("History: undo and redo over steps; a drag's previews are one step", () => {

@@ -73,3 +73,70 @@ test("first hour: the page runs under a strict CSP: plans, edits, drives; inline
     assert.equal(await page.evaluate(() => window.__cspSeen), 0, "no CSP violation while planning, editing and driving");
   });
 });
+
+/** The warnings shown: the plan's codes, the panel's list, and the badges on the map. */
+const shownWarnings = (page) =>
+  page.evaluate(() => ({
+    plan: (window.furrow.plan?.warnings ?? []).map((w) => w.code),
+    list: [...document.querySelectorAll("#warnings li")].map((li) => li.dataset.code),
+    badges: document.querySelectorAll("#map-notes .map-note").length,
+  }));
+
+test("first hour: a new field tapped clockwise plans without an orientation warning; undo right after closing it starts over", { timeout: TIMEOUT }, async () => {
+  await withViewer(DESKTOP, async (page, base) => {
+    await page.goto(base);
+    await ready(page);
+    // The map over the Pacific, so that a field drawn there carries a warning (at sea) with a
+    // badge on its boundary.
+    const square = [[-140, 30], [-139.99, 30], [-139.99, 30.01], [-140, 30.01], [-140, 30]];
+    await page.evaluate((c) => window.furrow.loadField({ type: "Polygon", coordinates: [c] }, "at sea"), square);
+    await ready(page);
+    await page.click("#new-field");
+    const o = await mapOrigin(page);
+    const cx = o.x + o.width / 2;
+    const cy = o.y + o.height / 2;
+    // Clockwise on the map, the natural way.
+    const corners = [
+      [cx - 200, cy - 140],
+      [cx + 200, cy - 140],
+      [cx + 200, cy + 140],
+      [cx - 200, cy + 140],
+    ];
+    for (const [x, y] of corners) await page.mouse.click(x, y);
+    await page.mouse.click(corners[0][0], corners[0][1]);
+    await planned(page);
+    const first = await shownWarnings(page);
+    assert.ok(!first.plan.includes("ring_reoriented"), `no orientation warning: ${first.plan}`);
+    assert.deepEqual(first.plan, ["field_at_sea"], "the one warning, to be cleared by undo");
+    assert.ok(first.badges > 0 && first.list.length > 0);
+    assert.equal((await dataset(page)).editMode, "edit");
+
+    // Undo right after closing it: nothing of the plan is left, and taps draw the field again.
+    await page.click("#undo");
+    await page.waitForFunction(() => window.furrow.document.features.length === 0);
+    const after = await page.evaluate(() => ({
+      summary: document.querySelectorAll("#summary dd").length,
+      status: document.getElementById("status").textContent,
+      mode: document.body.dataset.editMode,
+      swaths: document.body.dataset.swathCount,
+      plan: window.furrow.plan,
+      drawn: Boolean(window.furrow.view.plan),
+    }));
+    assert.deepEqual(await shownWarnings(page), { plan: [], list: [], badges: 0 });
+    assert.deepEqual(after, { summary: 0, status: "Draw the field: tap its corners on the map", mode: "boundary", swaths: undefined, plan: null, drawn: false });
+    // Redo brings the field back to edit; undo again, and three taps and Finish draw another.
+    await page.click("#redo");
+    await planned(page);
+    assert.equal((await dataset(page)).editMode, "edit");
+    assert.ok(Number((await dataset(page)).swathCount) > 0);
+    await page.click("#undo");
+    await page.waitForFunction(() => document.body.dataset.editMode === "boundary");
+    for (const [x, y] of [[cx - 150, cy + 120], [cx + 150, cy + 120], [cx, cy - 130]]) await page.mouse.click(x, y);
+    await page.click("#finish");
+    await planned(page);
+    const doc = await page.evaluate(() => window.furrow.document);
+    assert.equal(doc.features.length, 1);
+    assert.equal(doc.features[0].geometry.coordinates[0].length, 4, "the new triangle");
+    assert.ok(Number((await dataset(page)).swathCount) > 0, "and it is planned");
+  });
+});

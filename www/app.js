@@ -79,6 +79,7 @@ export const state = {
   fieldId: 0, // which field is shown: counts fields loaded (edits keep it)
   fullPlanMs: 0, // how long the last full plan took, call to result
   edited: false, // the field was changed in the viewer: the planner gets the edited document
+  awaitingBoundary: false, // the field drawn has no boundary yet: taps draw it
   loadToken: 0,
   replanSeq: 0, // replan calls made
   drawnSeq: 0, // the newest replan call whose result is shown

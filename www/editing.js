@@ -21,6 +21,7 @@ let dial = null; // the prohibited region's bearing dial, made when first shown
 /** A new field is shown: its document starts the edit history (not editable: no document). */
 export function startEditing(field, { edited = false } = {}) {
   state.fieldId++;
+  state.awaitingBoundary = false;
   way.reset();
   showWayState();
   const doc = toCollection(field);
@@ -54,13 +55,41 @@ export function applyDoc(doc, { final }) {
     saveSession();
   }
   refreshField(doc);
-  if (hasPolygon(doc)) replan({ preview: !final });
-  else {
-    driver.setPlan(null);
-    view.setPlan(null);
-    ui.status.textContent = "Draw the field: tap its corners on the map";
-  }
+  if (hasPolygon(doc)) {
+    // The boundary is back (redo after undoing it): its corners are edited, not drawn anew.
+    if (state.awaitingBoundary && tool.mode === "boundary" && !tool.draft.length) tool.setMode("edit");
+    state.awaitingBoundary = false;
+    replan({ preview: !final });
+  } else awaitBoundary();
   showEditState();
+}
+
+/**
+ * Nothing to plan yet (a new field, or undo back to before its boundary was closed): no plan,
+ * figures, warnings or error are left from before, a plan still on its way is not drawn, and a
+ * tap on the map puts down the boundary's first corner.
+ */
+function awaitBoundary() {
+  state.source = null;
+  state.plan = null;
+  state.error = null;
+  state.errorHighlight = [];
+  state.drawnSeq = state.replanSeq;
+  state.awaitingBoundary = true;
+  driver.setPlan(null);
+  showDriveState();
+  view.extraBounds = null;
+  view.setPlan(null);
+  view.setHighlights([]);
+  notes.hideError();
+  notes.clearWarnings({ notify: false });
+  ui.summary.replaceChildren();
+  renderWarnings([]);
+  ui.status.textContent = "Draw the field: tap its corners on the map";
+  delete document.body.dataset.swathCount;
+  delete document.body.dataset.planMs;
+  setPlanState("ready");
+  if (tool.mode !== "boundary") tool.setMode("boundary");
 }
 
 export function hasPolygon(doc) {
@@ -88,10 +117,7 @@ export function newField() {
   const name = "New field";
   state.entry = { name, opened: true };
   state.opened = null;
-  state.source = null;
   state.field = emptyField();
-  state.plan = null;
-  state.error = null;
   state.edited = true;
   openedOption(name);
   ui.field.value = OPENED;
@@ -99,19 +125,12 @@ export function newField() {
   ui.note.textContent = "Tap the corners of the field on the map; tap the first corner again to close it.";
   if (location.hash) window.history.replaceState(null, "", location.pathname + location.search);
   forgetFieldReferences();
-  notes.hideError();
-  notes.clearWarnings({ notify: false });
   history.reset(state.field);
   state.fieldId++;
   state.features = [];
   view.setField({ boundary: null, obstacles: [], prohibited: [], bounds: view.field?.bounds ?? null }, { fit: false });
-  driver.setPlan(null);
-  ui.summary.replaceChildren();
-  renderWarnings([]);
-  ui.status.textContent = "Draw the field: tap its corners on the map";
-  delete document.body.dataset.swathCount;
-  setPlanState("ready");
   tool.setMode("boundary");
+  awaitBoundary();
 }
 
 /** Hooks the edit tool, the driver and the way out to the page, and binds the edit bar. */

@@ -109,11 +109,40 @@ function ringPoints(doc, ref) {
   return Array.isArray(coords) && coords.every(isPosition) ? openRing(coords) : null;
 }
 
-/** `doc` with vertex `i` of the ring at `ref` moved to `lonLat`; null if there is no such vertex. */
+/** Twice the signed area of an open ring in lon/lat: positive when it runs counter-clockwise. */
+export function signedArea2(points) {
+  let a = 0;
+  for (let i = 0, j = points.length - 1; i < points.length; j = i++) {
+    a += (points[j][0] - points[0][0]) * (points[i][1] - points[0][1]) - (points[i][0] - points[0][0]) * (points[j][1] - points[0][1]);
+  }
+  return a;
+}
+
+/** An open ring running counter-clockwise, as GeoJSON's outer rings do (RFC 7946): the user
+ * taps the corners in whichever order comes naturally. */
+export function counterClockwise(points) {
+  return signedArea2(points) < 0 ? [points[0], ...points.slice(1).reverse()] : points;
+}
+
+/**
+ * `doc` with vertex `i` of the ring at `ref` moved to `lonLat`; null if there is no such vertex.
+ * A move that turns the ring over (a corner dragged across the far side of a triangle) leaves it
+ * running the way it ran: the ring is mirrored about vertex `i`, which keeps its index.
+ */
 export function moveVertex(doc, ref, i, lonLat) {
   const points = ringPoints(doc, ref);
   if (!points || !points[i] || !isPosition(lonLat)) return null;
+  const before = Math.sign(signedArea2(points));
   points[i] = lonLat;
+  const after = Math.sign(signedArea2(points));
+  if (before !== 0 && after === -before) {
+    const n = points.length;
+    return withRing(
+      doc,
+      ref,
+      points.map((_, j) => points[(((2 * i - j) % n) + n) % n]),
+    );
+  }
   return withRing(doc, ref, points);
 }
 
@@ -152,8 +181,9 @@ function extrasStart(doc) {
 }
 
 /**
- * `doc` with a polygon of `role` drawn through `points` (lon/lat, open ring, at least three).
- * A boundary replaces the boundary there is (its obstacles stay); others are added. Returns
+ * `doc` with a polygon of `role` drawn through `points` (lon/lat, open ring, at least three),
+ * kept counter-clockwise (a drawn polygon is an outer ring: a boundary, or an obstacle's or
+ * region's own). A boundary replaces the boundary there is (its obstacles stay); others are added. Returns
  * `{ doc, feature }` (the new feature's index), or null for fewer than three points.
  */
 export function addPolygon(doc, role, points, properties = {}) {
@@ -161,7 +191,7 @@ export function addPolygon(doc, role, points, properties = {}) {
   const feature = {
     type: "Feature",
     properties: { role, ...properties },
-    geometry: { type: "Polygon", coordinates: [closeRing(points)] },
+    geometry: { type: "Polygon", coordinates: [closeRing(counterClockwise(points))] },
   };
   const next = { ...doc, features: [...doc.features] };
   if (role === "boundary") {
