@@ -7,17 +7,49 @@
 //   bash scripts/build.sh   (once), then   node --test pkg-tests/first-hour.test.mjs
 import { test } from "node:test";
 import assert from "node:assert/strict";
+import { mkdirSync } from "node:fs";
+import { join } from "node:path";
 import {
   dataset,
   mapOrigin,
   planned,
   ready,
+  SHOTS,
   TIMEOUT,
   vertexAt,
   withViewer,
 } from "./viewer-support.mjs";
 
+mkdirSync(SHOTS, { recursive: true });
+
 const DESKTOP = { viewport: { width: 1280, height: 800 }, deviceScaleFactor: 1 };
+const PHONE = { viewport: { width: 390, height: 844 }, deviceScaleFactor: 2, hasTouch: true, isMobile: true };
+
+/** The marks on the map (corners, insert marks, corners being tapped) under the edit hint, with
+ * a handle's radius around it; and where the hint is. */
+const underHint = (page) =>
+  page.evaluate(async () => {
+    await new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r)));
+    const hint = document.getElementById("edit-hint");
+    const map = document.getElementById("map").getBoundingClientRect();
+    const r = hint.getBoundingClientRect();
+    const pad = 6;
+    const covered = window.furrow.tool
+      .handlePoints()
+      .filter(([x, y]) => x + map.left > r.left - pad && x + map.left < r.right + pad && y + map.top > r.top - pad && y + map.top < r.bottom + pad);
+    return { shown: !hint.hidden, place: hint.dataset.place, covered: covered.length, rect: r.toJSON() };
+  });
+
+/** Moves the view so that corner `i` of the boundary lies in the middle of the edit hint. */
+const cornerToHint = (page, i) =>
+  page.evaluate((i) => {
+    const { view, tool } = window.furrow;
+    const map = document.getElementById("map").getBoundingClientRect();
+    const r = document.getElementById("edit-hint").getBoundingClientRect();
+    const [sx, sy] = view.toScreen(tool.rings()[0].world[i]);
+    view.moveTo(sx, sy, r.left + r.width / 2 - map.left, r.top + r.height / 2 - map.top);
+    view.draw();
+  }, i);
 
 test("first hour: the page runs under a strict CSP: plans, edits, drives; inline scripts refused", { timeout: TIMEOUT }, async () => {
   await withViewer(DESKTOP, async (page, base) => {
@@ -51,6 +83,16 @@ test("first hour: the page runs under a strict CSP: plans, edits, drives; inline
     assert.equal((await dataset(page)).planner, "worker", "the planner's worker compiled its WebAssembly");
     // Edit: drag a corner; draw a prohibited region (its bearing dial); drive.
     await page.click('#edit-bar [data-mode="edit"]');
+    // The edit hint covers no corner, also when the map moves one to where it was.
+    let hint = await underHint(page);
+    assert.ok(hint.shown);
+    assert.equal(hint.covered, 0, `corners under the hint at ${hint.place}`);
+    const firstPlace = hint.place;
+    await cornerToHint(page, 2);
+    hint = await underHint(page);
+    assert.equal(hint.covered, 0, `corners under the hint at ${hint.place}`);
+    assert.notEqual(hint.place, firstPlace, "the hint moved aside");
+    await page.click("#fit");
     const v = await vertexAt(page, 0, 1);
     await page.mouse.move(v.x, v.y);
     await page.mouse.down();
@@ -92,6 +134,13 @@ test("first hour: a new field tapped clockwise plans without an orientation warn
     await page.evaluate((c) => window.furrow.loadField({ type: "Polygon", coordinates: [c] }, "at sea"), square);
     await ready(page);
     await page.click("#new-field");
+    // A corner tapped where the hint is: the hint moves aside (Backspace takes the corner back).
+    const at = (await underHint(page)).rect;
+    await page.mouse.click(at.x + at.width / 2, at.y + at.height / 2);
+    const moved = await underHint(page);
+    assert.equal(moved.covered, 0, `the corner tapped is under the hint at ${moved.place}`);
+    await page.keyboard.press("Backspace");
+    assert.equal(await page.evaluate(() => window.furrow.tool.draft.length), 0);
     const o = await mapOrigin(page);
     const cx = o.x + o.width / 2;
     const cy = o.y + o.height / 2;
@@ -138,5 +187,53 @@ test("first hour: a new field tapped clockwise plans without an orientation warn
     assert.equal(doc.features.length, 1);
     assert.equal(doc.features[0].geometry.coordinates[0].length, 4, "the new triangle");
     assert.ok(Number((await dataset(page)).swathCount) > 0, "and it is planned");
+  });
+});
+
+test("first hour: on a phone the map is whole on the first screen and usable at once; Undo and Redo in reach; the hint clear of corners", { timeout: TIMEOUT }, async () => {
+  await withViewer(PHONE, async (page, base) => {
+    await page.goto(`${base}#rectangle`);
+    await planned(page);
+    const first = await page.evaluate(() => {
+      const rect = (el) => el.getBoundingClientRect().toJSON();
+      // A button is in reach when it lies on the screen and a tap at its middle lands on it.
+      const reach = (id) => {
+        const el = document.getElementById(id);
+        const r = rect(el);
+        const onScreen = r.left >= 0 && r.top >= 0 && r.right <= innerWidth && r.bottom <= innerHeight;
+        return onScreen && document.elementFromPoint(r.left + r.width / 2, r.top + r.height / 2)?.closest("button") === el;
+      };
+      return { map: rect(document.querySelector(".map")), undo: reach("undo"), redo: reach("redo"), finish: document.getElementById("finish").hidden };
+    });
+    assert.ok(first.map.top >= 0 && first.map.top < 1, `the map starts at the top (${first.map.top} px)`);
+    assert.ok(first.map.bottom <= 844 && first.map.height >= 400, `the map whole on the screen: ${JSON.stringify(first.map)}`);
+    assert.ok(first.undo && first.redo, "Undo and Redo in reach without scrolling");
+    // Usable at once, all by touch and without scrolling: redraw the boundary (Field, three
+    // taps, Finish), undo, redo.
+    const o = await mapOrigin(page);
+    const before = await page.evaluate(() => JSON.stringify(window.furrow.document.features[0].geometry));
+    await page.locator('#edit-bar [data-mode="boundary"]').tap();
+    const cx = o.x + o.width / 2;
+    const cy = o.y + o.height / 2;
+    for (const [x, y] of [[cx - 100, cy + 80], [cx + 100, cy + 80], [cx, cy - 100]]) await page.touchscreen.tap(x, y);
+    await page.locator("#finish").tap();
+    await planned(page);
+    const triangle = await page.evaluate(() => JSON.stringify(window.furrow.document.features[0].geometry));
+    assert.notEqual(triangle, before);
+    await page.locator("#undo").tap();
+    await planned(page);
+    assert.equal(await page.evaluate(() => JSON.stringify(window.furrow.document.features[0].geometry)), before, "undo");
+    await page.locator("#redo").tap();
+    await planned(page);
+    assert.equal(await page.evaluate(() => JSON.stringify(window.furrow.document.features[0].geometry)), triangle, "redo");
+    assert.equal(await page.evaluate(() => scrollY), 0, "no scrolling needed");
+    // The edit hint, nearly as wide as the map, keeps clear of the corners.
+    assert.equal((await dataset(page)).editMode, "edit");
+    let hint = await underHint(page);
+    assert.equal(hint.covered, 0, `corners under the hint at ${hint.place}`);
+    await cornerToHint(page, 0);
+    hint = await underHint(page);
+    assert.equal(hint.covered, 0, `corners under the hint at ${hint.place}`);
+    await page.screenshot({ path: join(SHOTS, "first-hour-phone.png") });
   });
 });

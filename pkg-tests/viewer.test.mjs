@@ -147,8 +147,9 @@ test("viewer: phone layout with touch, pinch zoom", { timeout: TIMEOUT }, async 
         small,
       };
     });
-    assert.ok(layout.controls.bottom <= layout.map.top + 1, "controls above the map");
-    assert.ok(layout.info.top >= layout.map.bottom - 1, "figures below the map");
+    assert.ok(layout.map.top >= 0 && layout.map.bottom <= 844, "the map first, whole on the first screen");
+    assert.ok(layout.controls.top >= layout.map.bottom - 1, "controls below the map");
+    assert.ok(layout.info.top >= layout.controls.bottom - 1, "figures below the controls");
     assert.ok(layout.map.height >= 300, `map height ${layout.map.height}`);
     assert.equal(layout.scrollWidth, 390, "no sideways scrolling");
     assert.deepEqual(layout.small, [], "touch targets of at least 44 px");

@@ -15,6 +15,7 @@
 import { Driver } from "./drive.js";
 import { EditTool } from "./edit-tool.js";
 import { History, plannerInput } from "./editor.js";
+import { EditHint } from "./hint.js";
 import { MapNotes } from "./notes.js";
 import { PlanView } from "./view.js";
 import { WayOut } from "./way.js";
@@ -112,7 +113,13 @@ export const way = new WayOut({
   ready: () => Boolean(state.plan),
 });
 
-view.onDraw = () => notes.layout();
+/** The edit hint, kept clear of the marks on the map, the map's buttons and the error callout. */
+export const editHint = new EditHint(ui.editHint, { view, avoid: [document.querySelector(".map-tools"), ui.message] });
+
+view.onDraw = () => {
+  notes.layout();
+  if (!ui.editHint.hidden) editHint.layout(tool.handlePoints());
+};
 view.overlay = (ctx, theme) => {
   driver.draw(ctx, theme);
   way.draw(ctx, theme, tool.mode === "way");

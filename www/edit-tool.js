@@ -454,6 +454,26 @@ export class EditTool {
     return best?.i ?? null;
   }
 
+  /** Screen points ([x, y] CSS px) of the marks the user presses or is putting down: corners
+   * and insert marks while editing, the corners tapped while drawing, the entrance, A and B. */
+  handlePoints() {
+    const p = this.projection();
+    if (!p || !this.doc) return [];
+    const out = [];
+    const line = referenceLineOf(this.doc);
+    if (line) out.push(...line.map((q) => this.screenOf(p.forward(q))));
+    const entrance = entranceOf(this.doc);
+    if (entrance) out.push(this.screenOf(p.forward(entrance)));
+    if (this.mode === "edit") {
+      for (const r of this.rings()) {
+        for (const w of r.world) out.push(this.screenOf(w));
+        for (const m of this.midpoints(r)) out.push(this.screenOf(m.world));
+      }
+    }
+    if (this.drawing) for (const w of this.draft) out.push(this.screenOf(w));
+    return out;
+  }
+
   // ---- drawing -------------------------------------------------------------------------------
 
   /** The tool's marks over the map: handles in edit mode, the draft, the entrance and AB line. */

@@ -6,7 +6,7 @@
 // re-plans; a finished change is a step of the undo history, and the edited field is kept in this
 // browser (localStorage "furrow.session") with the settings ("furrow.settings"), so a reload in the
 // cab brings back the field as drawn.
-import { $, driver, formatNumber, history, notes, setPlanState, state, tool, ui, view, way } from "./app.js";
+import { $, driver, editHint, formatNumber, history, notes, setPlanState, state, tool, ui, view, way } from "./app.js";
 import { BearingDial } from "./dial.js";
 import { emptyField, plannerInput, setProperties, toCollection } from "./editor.js";
 import { OPENED, openedOption } from "./fields.js";
@@ -232,9 +232,7 @@ export function showEditState() {
     way: way.hint((v) => formatNumber(v, 0)),
     parcel: `This file holds ${editableParcels(history.doc ?? emptyField())} parcels. Tap the one to plan.`,
   };
-  const hint = hints[tool.mode];
-  ui.editHint.hidden = !hint;
-  ui.editHint.textContent = hint ?? "";
+  editHint.show(hints[tool.mode], tool.handlePoints());
   showRegionPanel();
 }
 
@@ -261,10 +259,7 @@ export function showWayState() {
   body.way = way.state;
   if (way.path) body.wayLength = String(way.path.properties.length_m);
   else delete body.wayLength;
-  if (tool.mode === "way") {
-    ui.editHint.hidden = false;
-    ui.editHint.textContent = way.hint((v) => formatNumber(v, 0));
-  }
+  if (tool.mode === "way") editHint.show(way.hint((v) => formatNumber(v, 0)), tool.handlePoints());
 }
 
 /** The Drive button and `body[data-drive]`, `data-drive-s`, as the driver's state says. */
