@@ -7,9 +7,10 @@
 //   bash scripts/build.sh   (once), then   node --test pkg-tests/first-hour.test.mjs
 import { test } from "node:test";
 import assert from "node:assert/strict";
-import { mkdirSync } from "node:fs";
+import { mkdirSync, rmSync, statSync, writeFileSync } from "node:fs";
 import { join } from "node:path";
 import {
+  FIELDS,
   dataset,
   mapOrigin,
   planned,
@@ -236,4 +237,91 @@ test("first hour: on a phone the map is whole on the first screen and usable at 
     assert.equal(hint.covered, 0, `corners under the hint at ${hint.place}`);
     await page.screenshot({ path: join(SHOTS, "first-hour-phone.png") });
   });
+});
+
+/** A Polygon of `n` vertices (n a multiple of 1,000: a ring of 1,000 round a circle, gone round
+ * n / 1,000 times), written with `digits` decimals and `space` after each comma: about
+ * (2 digits + 9 + space) bytes a vertex. */
+function polygonText(n, digits, space) {
+  const round = [];
+  for (let i = 0; i < 1000; i++) {
+    const a = (i / 1000) * 2 * Math.PI;
+    round.push(`[${(24 + 0.01 * Math.cos(a)).toFixed(digits)},${space}${(60 + 0.005 * Math.sin(a)).toFixed(digits)}]`);
+  }
+  const rounds = new Array(n / 1000).fill(round.join(`,${space}`)).join(`,${space}`);
+  return `{"type":"Polygon","coordinates":[[${rounds},${space}${round[0]}]]}`;
+}
+
+test("first hour: a 1.2 M-vertex file is refused within 3 s without holding up the page; one file's error is not left beside the next", { timeout: TIMEOUT }, async () => {
+  const dir = join(SHOTS, "..", "first-hour-files");
+  mkdirSync(dir, { recursive: true });
+  // Over the planner's 32 MB (refused before it is read), and under it but with 1.2 M points
+  // (refused once the worker has parsed it).
+  const big = join(dir, "big.geojson");
+  const dense = join(dir, "dense.geojson");
+  writeFileSync(big, polygonText(1_200_000, 9, " "));
+  writeFileSync(dense, polygonText(1_200_000, 5, ""));
+  const MiB = 1024 * 1024;
+  assert.ok(statSync(big).size > 32 * MiB && statSync(big).size < 64 * MiB, `big.geojson is ${statSync(big).size} bytes`);
+  assert.ok(statSync(dense).size < 32 * MiB, `dense.geojson is ${statSync(dense).size} bytes`);
+  try {
+    await withViewer(DESKTOP, async (page, base) => {
+      await page.goto(base);
+      await ready(page);
+      // The page's main thread, watched: long tasks, and the longest gap between frames.
+      await page.evaluate(() => {
+        window.__long = [];
+        new PerformanceObserver((list) => window.__long.push(...list.getEntries().map((e) => e.duration))).observe({ type: "longtask" });
+        window.__gap = 0;
+        let last = performance.now();
+        const tick = (t) => {
+          window.__gap = Math.max(window.__gap, t - last);
+          last = t;
+          requestAnimationFrame(tick);
+        };
+        requestAnimationFrame(tick);
+      });
+      const open = async (path) => {
+        const [chooser] = await Promise.all([page.waitForEvent("filechooser"), page.click("#open-file")]);
+        await chooser.setFiles(path);
+      };
+      const errorList = () => page.$$eval("#warnings li", (items) => items.map((li) => [li.dataset.code, li.className]));
+
+      // A broken file first: its error is shown, on the map and in the list.
+      await open(join(FIELDS, "invalid/self-intersecting-bowtie.geojson"));
+      await page.waitForSelector("body[data-plan-state=error]");
+      assert.deepEqual(await errorList(), [["self_intersection", "error"]]);
+
+      for (const [path, what] of [[big, "larger than the planner reads"], [dense, "more points than the planner accepts"]]) {
+        await page.evaluate(() => {
+          window.__long = [];
+          window.__gap = 0;
+        });
+        const t0 = Date.now();
+        await open(path);
+        await page.waitForSelector("body[data-plan-state=error] #map-message[data-code=input_too_large]", { timeout: 3_000 });
+        const ms = Date.now() - t0;
+        await page.evaluate(() => new Promise((r) => setTimeout(r, 300))); // tasks still to come
+        const { long, gap } = await page.evaluate(() => ({ long: Math.max(0, ...window.__long), gap: window.__gap }));
+        console.log(`${path.replace(/.*\//, "")} (${what}): error shown after ${ms} ms; longest task ${long.toFixed(0)} ms, longest frame gap ${gap.toFixed(0)} ms`);
+        assert.ok(ms < 3_000, `the error within 3 s (${ms} ms)`);
+        assert.ok(long < 200, `the main thread held up for ${long.toFixed(0)} ms`);
+        assert.ok(gap < 200, `no frame for ${gap.toFixed(0)} ms`);
+        // The error of the file before is gone, from the list and from the map.
+        assert.deepEqual(await errorList(), [["input_too_large", "error"]]);
+        const left = await page.evaluate(() => ({ highlights: window.furrow.view.highlights.length, marker: window.furrow.view.marker, field: window.furrow.view.field?.boundary ?? null }));
+        assert.deepEqual(left, { highlights: 0, marker: null, field: null }, "nothing of the file before on the map");
+        assert.match(await page.textContent("#field option:checked"), new RegExp(path.replace(/.*\//, "").replace(".geojson", "")));
+      }
+      assert.match(await page.textContent("#map-message"), /more than 200000 points/);
+
+      // A good file after them plans, with nothing of their errors left.
+      await open(join(FIELDS, "rectangle.geojson"));
+      await ready(page);
+      assert.deepEqual(await errorList(), []);
+      assert.ok(await page.isHidden("#map-message"));
+    });
+  } finally {
+    rmSync(dir, { recursive: true, force: true });
+  }
 });

@@ -1,15 +1,16 @@
 // Fields to plan: the bundled ones (fields/index.json, with their suggested settings), files
 // opened or dropped on the map, and the field and plan saved as GeoJSON files.
-import { history, notes, setPlanState, state, ui, view } from "./app.js";
-import { startEditing } from "./editing.js";
-import { initPlanner } from "./planner.js";
+import { driver, history, notes, setPlanState, state, ui, view } from "./app.js";
+import { showDriveState, startEditing } from "./editing.js";
+import { sentence } from "./notes.js";
+import { initPlanner, readFile } from "./planner.js";
 import { replan, showFailure } from "./planning.js";
+import { sizeError } from "./reading.js";
 import { fieldParts, fieldScene, inputFeatures, parseForDrawing, projectFeature, projectionFor } from "./scene.js";
 import { applySuggested, forgetFieldReferences } from "./settings.js";
 
 /** The value of the field picker's entry for an opened file. */
 export const OPENED = ":opened";
-const MAX_FILE_BYTES = 64 * 1024 * 1024; // the planner refuses more than 32 MB anyway
 const fieldCache = new Map(); // file -> Promise of the field GeoJSON
 
 /** Opening a file by dropping it on the map. Files dropped elsewhere are ignored, not opened by
@@ -43,30 +44,55 @@ export function bindDrop(map) {
   }
 }
 
-/** Reads a file and plans it as it is. */
+/**
+ * Reads a file and plans it as it is. The planner's worker reads it (reading.js): a file larger
+ * than the planner reads is refused before it is read, and one with more points than it accepts
+ * once it is parsed there, so the page never holds up on it.
+ */
 export async function openFile(file) {
   const name = file.name.replace(/\.(geo)?json$/i, "") || file.name;
-  if (file.size > MAX_FILE_BYTES) {
-    const mb = Math.round(file.size / 1e6);
-    showFailure(`${file.name} is ${mb} MB: too large for a field (at most 32 MB).`, "file_too_large");
+  const token = ++state.loadToken;
+  const tooLarge = sizeError(file.name, file.size);
+  if (tooLarge) {
+    showFileFailure(name, tooLarge);
     return;
   }
-  let text;
-  try {
-    text = await file.text();
-  } catch (e) {
-    showFailure(`${file.name} could not be read: ${e.message ?? e}`, "file_unreadable");
-    return;
-  }
-  await loadField(text, name);
+  setPlanState("loading");
+  ui.status.textContent = `Reading ${file.name}…`;
+  const read = await readFile(file);
+  if (token !== state.loadToken) return; // another field was chosen meanwhile
+  if (read.error) showFileFailure(name, read.error);
+  else await loadField(read.text, name, { read });
+}
+
+/** A file that could not be opened takes the place of the field shown: its name in the picker,
+ * nothing on the map, and why, alone (nothing of the field before is left beside it). */
+function showFileFailure(name, error) {
+  state.loadToken++;
+  state.entry = { name, opened: true };
+  state.opened = null;
+  state.source = null;
+  state.field = undefined;
+  state.features = [];
+  startEditing(null);
+  openedOption(name);
+  ui.field.value = OPENED;
+  ui.suggested.disabled = true;
+  ui.note.textContent = "Opened from a file; not planned.";
+  if (location.hash) window.history.replaceState(null, "", location.pathname + location.search);
+  view.setField({ boundary: null, obstacles: [], prohibited: [], bounds: null }, { fit: false });
+  driver.setPlan(null);
+  showDriveState();
+  showFailure(sentence(error.message), error.code);
 }
 
 /**
  * Shows and plans a field given as GeoJSON text or object, with the current settings. The text
  * goes to the planner as it is, so a broken file gets the planner's own error; for drawing, as
- * much of it as can be read is drawn. Resolves to `{ plan, error }`.
+ * much of it as can be read is drawn (`read`: the text as the worker read it, with its parse).
+ * Resolves to `{ plan, error }`.
  */
-export async function loadField(input, name = "Opened field", { edited = false } = {}) {
+export async function loadField(input, name = "Opened field", { edited = false, read = null } = {}) {
   const token = ++state.loadToken;
   setPlanState("loading");
   try {
@@ -80,7 +106,8 @@ export async function loadField(input, name = "Opened field", { edited = false }
   state.opened = { source: input, name };
   state.entry = { name, opened: true };
   state.source = input;
-  state.field = typeof input === "string" ? parseForDrawing(input) : input;
+  // A file read in the worker comes parsed for drawing already (read.field).
+  state.field = read ? read.field : typeof input === "string" ? parseForDrawing(input) : input;
   if (!edited) forgetFieldReferences();
   state.edited = edited;
   openedOption(name);

@@ -11,10 +11,14 @@
 //   const { path, error } = await runPath([lon, lat], headingDeg, [lon, lat], { turning });
 //   the shortest way along the last plan's tracks (a GeoJSON Feature), see the package's TrackGraph
 //
+//   const { text, field, error } = await readFile(file);
+//   a field file read off the page's thread, within the planner's limits (reading.js)
+//
 // The newest call wins: while one plan runs, calls wait in a queue of one, and each new call
 // replaces the one waiting (which resolves as stale). Dragging a vertex thus plans the newest
 // shape as soon as the planner is free, never a backlog of old ones.
 import { plainError } from "./errors.js";
+import { readFieldFile } from "./reading.js";
 
 let ready = null;
 let worker = null;
@@ -24,7 +28,7 @@ let running = null; // the call the planner is working on
 let waiting = null; // the newest call not yet started
 let lastPlan = null; // in the page: the last plan made, for its tracks
 let inPageTracks = null; // in the page: the module's TrackGraph class, and the graph of lastPlan
-const pathCalls = new Map(); // id -> resolve, for the ways asked of the worker
+const calls = new Map(); // id -> resolve, for the ways and files asked of the worker
 
 /** Starts the planner once; resolves to `{ version, worker }` (worker: whether it runs in one). */
 export function initPlanner() {
@@ -53,9 +57,9 @@ function startWorker() {
       worker = w;
       w.onerror = (e) => finish({ id: running?.id, error: { code: "internal", message: String(e?.message ?? e) }, ms: 0 });
       w.onmessage = (e) => {
-        const resolve = pathCalls.get(e.data?.id);
+        const resolve = calls.get(e.data?.id);
         if (!resolve) return finish(e.data);
-        pathCalls.delete(e.data.id);
+        calls.delete(e.data.id);
         resolve({ ...e.data });
       };
       resolve({ version: data.version, worker: true });
@@ -124,7 +128,7 @@ export function runPath(position, heading, target, options) {
         const id = ++nextId;
         const t0 = performance.now();
         if (worker) {
-          pathCalls.set(id, (data) => resolve({ ...data, ms: performance.now() - t0 }));
+          calls.set(id, (data) => resolve({ ...data, ms: performance.now() - t0 }));
           worker.postMessage({ id, path: { position, heading, target, options } });
           return;
         }
@@ -137,6 +141,25 @@ export function runPath(position, heading, target, options) {
         }
       }),
     (e) => ({ error: plainError(e), ms: 0 }),
+  );
+}
+
+/**
+ * Reads a field file (a File from the file input or a drop) in the worker, so that a large one
+ * never holds up the page: resolves to `{ text, field }` or `{ error }` (reading.js); never
+ * rejects. Where there is no worker, it is read in the page.
+ */
+export function readFile(file) {
+  return initPlanner().then(
+    () =>
+      worker
+        ? new Promise((resolve) => {
+            const id = ++nextId;
+            calls.set(id, (data) => resolve(data.read));
+            worker.postMessage({ id, read: file });
+          })
+        : readFieldFile(file),
+    () => readFieldFile(file),
   );
 }
 

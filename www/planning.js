@@ -196,11 +196,22 @@ export function jsonExcerpt(source, message) {
   };
 }
 
-/** A failure outside planning (loading the package, a field or a file). */
+/** A failure outside planning (loading the package, a field or a file): nothing of the plan or
+ * error before it is left beside it. */
 export function showFailure(text, code = "load_failed") {
   state.error = { code, message: text };
+  state.plan = null;
+  state.errorHighlight = [];
+  state.drawnSeq = state.replanSeq; // a plan on its way is of what failed to replace it
+  view.extraBounds = null;
+  view.setPlan(null);
   notes.clearWarnings({ notify: false });
-  notes.showError({ code, title: "Not loaded", text, anchor: null });
+  updateHighlights();
+  notes.showError({ code, title: "Not loaded", text, hint: ERROR_HINTS[code], anchor: null });
   ui.status.textContent = "Not loaded";
+  ui.summary.replaceChildren();
+  renderWarnings([], { text: `Not loaded: ${text}`, code });
+  delete document.body.dataset.swathCount;
+  delete document.body.dataset.planMs;
   setPlanState("error");
 }

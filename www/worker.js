@@ -1,11 +1,13 @@
 // The planner in a Web Worker: the page stays responsive while a large field plans. Messages in:
 // `{ id, field, options }` plans; `{ id, path: { position, heading, target, options } }` asks
-// for the shortest way along the last plan's tracks (its track graph built once per plan). Out:
-// `{ id, plan, ms }`, `{ id, path, ms }` or `{ id, error, ms }` (the sampled path's typed arrays
-// are transferred, not copied), and `{ id: 0, version }` once the module is ready (or
-// `{ id: 0, failed }` if it cannot load).
+// for the shortest way along the last plan's tracks (its track graph built once per plan);
+// `{ id, read: file }` reads a field file (reading.js: its size and points checked, parsed for
+// drawing). Out: `{ id, plan, ms }`, `{ id, path, ms }` or `{ id, error, ms }` (the sampled
+// path's typed arrays are transferred, not copied), `{ id, read: { text, field } | { error } }`,
+// and `{ id: 0, version }` once the module is ready (or `{ id: 0, failed }` if it cannot load).
 import init, { plan, version, TrackGraph } from "./pkg/furrow.js";
 import { plainError } from "./errors.js";
+import { readFieldFile } from "./reading.js";
 
 const ready = init().then(
   () => self.postMessage({ id: 0, version: version() }),
@@ -16,7 +18,12 @@ let lastPlan = null; // the last plan made: its features, for its tracks
 let tracks = null; // the track graph of lastPlan, made on the first path asked
 
 self.onmessage = async (event) => {
-  const { id, field, options, path } = event.data ?? {};
+  const { id, field, options, path, read } = event.data ?? {};
+  if (read) {
+    // Reading needs no planner: it does not wait for the module.
+    self.postMessage({ id, read: await readFieldFile(read) });
+    return;
+  }
   await ready;
   const t0 = performance.now();
   try {
