@@ -453,8 +453,8 @@ test("editor: a file of many parcels: each shown, the one tapped planned", { tim
     assert.match(await page.textContent("#status"), /100 parcels/);
     // Tap the middle of the largest parcel.
     const target = await page.evaluate(() => {
-      const { tool, view } = window.furrow;
-      const rings = tool.rings().filter((r) => r.ring === 0);
+      const { parcels, view } = window.furrow;
+      const rings = parcels.parcels.map((p) => ({ feature: p.index, world: p.world[0] }));
       const area = (w) => Math.abs(w.reduce((s, p, i) => s + p[0] * w[(i + 1) % w.length][1] - w[(i + 1) % w.length][0] * p[1], 0)) / 2;
       const big = rings.reduce((a, b) => (area(b.world) > area(a.world) ? b : a));
       const xs = big.world.map((p) => p[0]);

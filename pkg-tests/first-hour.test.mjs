@@ -7,7 +7,7 @@
 //   bash scripts/build.sh   (once), then   node --test pkg-tests/first-hour.test.mjs
 import { test } from "node:test";
 import assert from "node:assert/strict";
-import { mkdirSync, rmSync, statSync, writeFileSync } from "node:fs";
+import { mkdirSync, readFileSync, rmSync, statSync, writeFileSync } from "node:fs";
 import { join } from "node:path";
 import {
   FIELDS,
@@ -324,4 +324,106 @@ test("first hour: a 1.2 M-vertex file is refused within 3 s without holding up t
   } finally {
     rmSync(dir, { recursive: true, force: true });
   }
+});
+
+test("first hour: a file of parcels: a searchable list of names and areas, tap to plan, back to the list; parcels a few pixels wide; a tap beside one picks it", { timeout: TIMEOUT }, async () => {
+  const path = join(FIELDS, "real/dk_marker_2026_sample.geojson");
+  const file = JSON.parse(readFileSync(path, "utf8"));
+  await withViewer(DESKTOP, async (page, base) => {
+    await page.goto(base);
+    await ready(page);
+    const [chooser] = await Promise.all([page.waitForEvent("filechooser"), page.click("#open-file")]);
+    await chooser.setFiles(path);
+    await page.waitForSelector("body[data-plan-state=pick]");
+    assert.equal((await dataset(page)).editMode, "parcel");
+    const items = () =>
+      page.$$eval("#parcels-list button", (buttons) =>
+        buttons.map((b) => ({ name: b.querySelector(".parcel-name").textContent, m2: Number(b.querySelector(".parcel-area").dataset.m2), area: b.querySelector(".parcel-area").textContent })),
+      );
+
+    // The list: every parcel by its id, in the file's order, with its area; the register's own
+    // figure (area_ha, computed in its national grid) agrees.
+    const list = await items();
+    assert.deepEqual(list.map((i) => i.name), file.features.map((f) => f.properties.id));
+    file.features.forEach((f, k) => {
+      const ha = f.properties.area_ha;
+      assert.ok(Math.abs(list[k].m2 / 1e4 - ha) <= 0.01 * ha + 0.002, `${f.properties.id}: ${list[k].m2} m² listed, ${ha} ha in the register`);
+    });
+    assert.match(list[4].area, /^9\.2\d ha$/);
+
+    // Every parcel drawn at least a few pixels wide, far out as the map is.
+    const drawn = await page.evaluate(() => {
+      const { parcels, view } = window.furrow;
+      const probe = document.createElement("span");
+      probe.style.color = "var(--select)";
+      document.body.append(probe);
+      const [r, g, b] = getComputedStyle(probe).color.match(/\d+/g).map(Number);
+      probe.remove();
+      const canvas = document.getElementById("map");
+      const k = canvas.width / canvas.clientWidth;
+      const ctx = canvas.getContext("2d");
+      return parcels.parcels.map((p) => {
+        const pts = p.world[0].map((w) => view.toScreen(w));
+        const x0 = Math.min(...pts.map((q) => q[0])) - 6;
+        const y0 = Math.min(...pts.map((q) => q[1])) - 6;
+        const x1 = Math.max(...pts.map((q) => q[0])) + 6;
+        const y1 = Math.max(...pts.map((q) => q[1])) + 6;
+        const data = ctx.getImageData(Math.round(x0 * k), Math.round(y0 * k), Math.round((x1 - x0) * k), Math.round((y1 - y0) * k)).data;
+        let n = 0;
+        for (let i = 0; i < data.length; i += 4) if (Math.abs(data[i] - r) + Math.abs(data[i + 1] - g) + Math.abs(data[i + 2] - b) < 60) n++;
+        return { size: Math.max(x1 - x0, y1 - y0) - 12, px: n / (k * k) };
+      });
+    });
+    assert.ok(drawn.some((d) => d.size < 4), "some parcels are under 4 px across at this zoom");
+    const thin = drawn.map((d, k) => [k, d]).filter(([, d]) => d.px < 30);
+    assert.deepEqual(thin, [], "parcels drawn with fewer than 30 px of colour");
+
+    // A tap 10 px beside the small parcel with most room around it picks it.
+    const target = await page.evaluate(() => {
+      const { parcels, view } = window.furrow;
+      const spots = parcels.parcels.map((p) => {
+        const pts = p.world[0].map((w) => view.toScreen(w));
+        return { index: p.index, right: Math.max(...pts.map((q) => q[0])), x: pts.reduce((s, q) => s + q[0], 0) / pts.length, y: pts.reduce((s, q) => s + q[1], 0) / pts.length };
+      });
+      const room = (s) => Math.min(...spots.filter((o) => o !== s).map((o) => Math.hypot(o.x - s.x, o.y - s.y)));
+      return spots.reduce((a, b) => (room(b) > room(a) ? b : a));
+    });
+    const o = await mapOrigin(page);
+    await page.mouse.click(o.x + target.right + 10, o.y + target.y);
+    await page.waitForSelector("body[data-plan-state=ready], body[data-plan-state=error]");
+    const id = file.features[target.index].properties.id;
+    assert.match(await page.textContent("#field option:checked"), new RegExp(id));
+    assert.deepEqual(
+      await page.evaluate(() => window.furrow.document.features[0].geometry.coordinates[0]),
+      file.features[target.index].geometry.coordinates[0],
+    );
+    assert.match(await page.textContent("#parcels-title"), new RegExp(`${id} \\(parcel ${target.index + 1} of 100\\)`));
+    assert.ok(await page.isHidden("#parcels-list"));
+
+    // Back to the list; search by id, and by the crop (any text of the parcel's properties).
+    await page.click("#parcels-back");
+    await page.waitForSelector("body[data-plan-state=pick]");
+    assert.equal((await items()).length, 100);
+    await page.fill("#parcels-search", "063");
+    assert.deepEqual((await items()).map((i) => i.name), ["dk_marker_2026_sample_063"]);
+    const poplars = file.features.filter((f) => Object.values(f.properties).some((v) => typeof v === "string" && /poppel/i.test(v)));
+    await page.fill("#parcels-search", "POPPEL");
+    assert.deepEqual((await items()).map((i) => i.name), poplars.map((f) => f.properties.id));
+    assert.ok(poplars.length >= 2 && poplars.length < 100);
+    await page.fill("#parcels-search", "");
+    // A tap in the list plans that parcel (the largest, 23 ha).
+    const largest = file.features.reduce((a, f) => (f.properties.area_ha > a.properties.area_ha ? f : a));
+    await page.click(`#parcels-list button:has-text("${largest.properties.id}")`);
+    await planned(page);
+    assert.ok(Number((await dataset(page)).swathCount) > 0, "the parcel is planned");
+    assert.match(await page.textContent("#status"), new RegExp(largest.properties.id));
+    await page.screenshot({ path: join(SHOTS, "first-hour-parcel.png") });
+    await page.click("#parcels-back");
+    await page.waitForSelector("body[data-plan-state=pick]");
+    await page.screenshot({ path: join(SHOTS, "first-hour-parcels.png") });
+    // Another field: the list goes.
+    await page.selectOption("#field", "rectangle");
+    await planned(page);
+    assert.ok(await page.isHidden("#parcels"));
+  });
 });

@@ -120,7 +120,11 @@ view.onDraw = () => {
   notes.layout();
   if (!ui.editHint.hidden) editHint.layout(tool.handlePoints());
 };
+/** More to draw over the map, first: `(ctx, theme) => void` (the parcels of a file, parcels.js). */
+export const layers = [];
+
 view.overlay = (ctx, theme) => {
+  for (const draw of layers) draw(ctx, theme);
   driver.draw(ctx, theme);
   way.draw(ctx, theme, tool.mode === "way");
 };

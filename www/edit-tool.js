@@ -13,7 +13,8 @@
 //   entrance    tap where the machine enters the field
 //   abline      tap A, then B: the swaths run along the line from A to B
 //   edge        tap the boundary edge the swaths should run along
-//   parcel      a file of many parcels (a register's export): tap the one to plan
+//   parcel      a file of many parcels (a register's export): taps go to `onParcelTap` (parcels.js
+//               draws them and picks the one tapped)
 //   way         the way out along the tracks: taps go to `onWayTap` (way.js asks the planner)
 //
 // Every change goes through the History (editor.js) and `onChange(doc, { final })`: `final` is
@@ -50,10 +51,10 @@ export class EditTool {
    * @param {() => void} [o.onState] mode, selection or draft changed
    * @param {(edge: number) => void} [o.onPickEdge]
    * @param {(line) => void} [o.onPickLine]
-   * @param {(feature: number) => void} [o.onPickParcel]
+   * @param {(pt: {x: number, y: number}) => void} [o.onParcelTap] a tap in parcel mode (screen px)
    * @param {(world: number[]) => void} [o.onWayTap]
    */
-  constructor({ view, projection, history, onChange, onState, onPickEdge, onPickLine, onPickParcel, onWayTap }) {
+  constructor({ view, projection, history, onChange, onState, onPickEdge, onPickLine, onParcelTap, onWayTap }) {
     this.view = view;
     this.projection = projection;
     this.history = history;
@@ -61,7 +62,7 @@ export class EditTool {
     this.onState = onState ?? (() => {});
     this.onPickEdge = onPickEdge ?? (() => {});
     this.onPickLine = onPickLine ?? (() => {});
-    this.onPickParcel = onPickParcel ?? (() => {});
+    this.onParcelTap = onParcelTap ?? (() => {});
     this.onWayTap = onWayTap ?? (() => {});
     this.mode = "view";
     this.selection = null; // { feature, part, ring, vertex } (vertex null: the whole feature)
@@ -238,6 +239,10 @@ export class EditTool {
 
   /** A press that did not move, away from any handle. */
   tap(pt) {
+    if (this.mode === "parcel") {
+      this.onParcelTap(pt);
+      return true;
+    }
     if (!this.doc) return false;
     const world = this.view.toWorld(pt.x, pt.y);
     switch (this.mode) {
@@ -289,11 +294,6 @@ export class EditTool {
       case "way":
         this.onWayTap(world);
         return true;
-      case "parcel": {
-        const parcel = this.featureAt(world);
-        if (parcel) this.onPickParcel(parcel.feature);
-        return true;
-      }
       case "edge": {
         const edge = this.boundaryEdgeAt(pt);
         if (edge != null) {
@@ -485,7 +485,6 @@ export class EditTool {
     const entrance = entranceOf(this.doc);
     if (entrance) this.drawEntrance(ctx, t, p.forward(entrance), this.selectedFeature?.role === "entrance");
     if (this.mode === "edit") this.drawHandles(ctx, t);
-    if (this.mode === "parcel") this.drawParcels(ctx, t);
     if (this.drawing && this.draft.length) this.drawDraft(ctx, t);
   }
 
@@ -544,29 +543,6 @@ export class EditTool {
         ctx.stroke();
       }
     }
-  }
-
-  /** Every parcel of the file, outlined, for the user to pick one. */
-  drawParcels(ctx, t) {
-    this.ringsPath(ctx, this.rings());
-    ctx.fillStyle = t.field;
-    ctx.globalAlpha = 0.8;
-    ctx.fill("evenodd");
-    ctx.globalAlpha = 1;
-    ctx.lineWidth = 2;
-    ctx.strokeStyle = t.select;
-    ctx.stroke();
-  }
-
-  /** Bounds [x0, y0, x1, y1] of every ring in world metres, or null. */
-  bounds() {
-    let b = null;
-    for (const r of this.rings()) {
-      for (const [x, y] of r.world) {
-        b = b ? [Math.min(b[0], x), Math.min(b[1], y), Math.max(b[2], x), Math.max(b[3], y)] : [x, y, x, y];
-      }
-    }
-    return b;
   }
 
   drawDraft(ctx, t) {

@@ -10,7 +10,7 @@ import { $, driver, editHint, formatNumber, history, notes, setPlanState, state,
 import { BearingDial } from "./dial.js";
 import { emptyField, plannerInput, setProperties, toCollection } from "./editor.js";
 import { OPENED, openedOption } from "./fields.js";
-import { editableParcels, pickParcel } from "./parcels.js";
+import { forgetParcels, parcelCount } from "./parcels.js";
 import { replan } from "./planning.js";
 import { fieldParts, fieldScene, inputFeatures, projectFeature, projectionFor } from "./scene.js";
 import { forgetFieldReferences, saveSession, settingsChanged } from "./settings.js";
@@ -125,6 +125,7 @@ export function newField() {
   ui.note.textContent = "Tap the corners of the field on the map; tap the first corner again to close it.";
   if (location.hash) window.history.replaceState(null, "", location.pathname + location.search);
   forgetFieldReferences();
+  forgetParcels();
   history.reset(state.field);
   state.fieldId++;
   state.features = [];
@@ -146,7 +147,6 @@ export function bindEditing() {
     ui.inputs.direction.value = "line";
     settingsChanged();
   };
-  tool.onPickParcel = (feature) => pickParcel(feature);
   tool.onWayTap = (world) => way.tap(world);
   driver.onState = () => showDriveState();
   way.onState = () => showWayState();
@@ -230,7 +230,7 @@ export function showEditState() {
     abline: tool.draft.length ? "Now tap B." : "Tap A, then B: the swaths run along the line.",
     edge: "Tap the boundary edge the swaths should run along.",
     way: way.hint((v) => formatNumber(v, 0)),
-    parcel: `This file holds ${editableParcels(history.doc ?? emptyField())} parcels. Tap the one to plan.`,
+    parcel: `This file holds ${parcelCount()} parcels. Tap the one to plan, or pick it from the list.`,
   };
   editHint.show(hints[tool.mode], tool.handlePoints());
   showRegionPanel();

@@ -4,6 +4,7 @@ import { driver, history, notes, setPlanState, state, ui, view } from "./app.js"
 import { showDriveState, startEditing } from "./editing.js";
 import { sentence } from "./notes.js";
 import { initPlanner, readFile } from "./planner.js";
+import { forgetParcels, parcelFeatures, showParcels } from "./parcels.js";
 import { replan, showFailure } from "./planning.js";
 import { sizeError } from "./reading.js";
 import { fieldParts, fieldScene, inputFeatures, parseForDrawing, projectFeature, projectionFor } from "./scene.js";
@@ -69,6 +70,7 @@ export async function openFile(file) {
  * nothing on the map, and why, alone (nothing of the field before is left beside it). */
 function showFileFailure(name, error) {
   state.loadToken++;
+  forgetParcels();
   state.entry = { name, opened: true };
   state.opened = null;
   state.source = null;
@@ -92,7 +94,7 @@ function showFileFailure(name, error) {
  * much of it as can be read is drawn (`read`: the text as the worker read it, with its parse).
  * Resolves to `{ plan, error }`.
  */
-export async function loadField(input, name = "Opened field", { edited = false, read = null } = {}) {
+export async function loadField(input, name = "Opened field", { edited = false, read = null, parcel = false } = {}) {
   const token = ++state.loadToken;
   setPlanState("loading");
   try {
@@ -108,14 +110,27 @@ export async function loadField(input, name = "Opened field", { edited = false, 
   state.source = input;
   // A file read in the worker comes parsed for drawing already (read.field).
   state.field = read ? read.field : typeof input === "string" ? parseForDrawing(input) : input;
+  // A file of many parcels: the one to plan is picked first (a parcel picked is planned here).
+  if (!parcel) forgetParcels();
+  const parcels = !edited && !parcel && parcelFeatures(state.field);
   if (!edited) forgetFieldReferences();
   state.edited = edited;
   openedOption(name);
   ui.field.value = OPENED;
   ui.field.disabled = false;
   ui.suggested.disabled = true;
-  ui.note.textContent = edited ? "Drawn or edited here; planned with the settings below." : "Opened from a file; planned with the settings below.";
+  ui.note.textContent = parcels
+    ? "A file of parcels: pick the one to plan, on the map or in the list."
+    : edited
+      ? "Drawn or edited here; planned with the settings below."
+      : "Opened from a file; planned with the settings below.";
   if (location.hash) window.history.replaceState(null, "", location.pathname + location.search);
+  if (parcels) {
+    startEditing(null);
+    state.source = null; // nothing to plan until a parcel is picked
+    showParcels(parcels, name);
+    return { plan: null, error: null };
+  }
   startEditing(state.field, { edited });
   showField(state.field);
   return replan();
@@ -172,6 +187,7 @@ export async function selectField(name) {
     return;
   }
   if (token !== state.loadToken) return; // another field was picked meanwhile
+  forgetParcels();
   state.entry = entry;
   state.field = field;
   state.source = field;

@@ -29,6 +29,7 @@ import {
   planText,
   selectField,
 } from "./fields.js";
+import { bindParcels, picker, showParcels } from "./parcels.js";
 import { initPlanner } from "./planner.js";
 import { replan, showFailure, updateHighlights } from "./planning.js";
 import { applySuggested, readOptions, readSession, restoreSettings, saveSettings, settingsChanged, showDirectionInputs, showMoreState } from "./settings.js";
@@ -69,6 +70,9 @@ window.furrow = {
   replan,
   selectField,
   loadField,
+  /** A file's parcels (GeoJSON Features) to pick the one to plan from, and the picker. */
+  showParcels,
+  parcels: picker,
   exportField: fieldText,
   exportPlan: planText,
 };
@@ -77,6 +81,7 @@ setPlanState("loading");
 restoreSettings();
 bindControls();
 bindEditing();
+bindParcels();
 start();
 registerOffline();
 

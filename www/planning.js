@@ -6,7 +6,6 @@
 import { driver, notes, setPlanState, state, ui, view, way } from "./app.js";
 import { showDriveState, showEditState } from "./editing.js";
 import { ERROR_HINTS, featureLabel, sentence } from "./notes.js";
-import { offerParcels } from "./parcels.js";
 import { runPlan } from "./planner.js";
 import { outlineAnchor, pathBounds, planScene } from "./scene.js";
 import { inputsNamedIn, markInvalid, readOptions, showMoreState } from "./settings.js";
@@ -153,7 +152,6 @@ export function showPlanError(error, { local = false } = {}) {
   view.setPlan(null, { marker: place.marker });
   updateHighlights();
   if (!local) markInvalid(inputsNamedIn(error));
-  if (!local && error.code === "ambiguous_boundary" && offerParcels()) return;
   const title = local ? "Check the settings" : "Cannot plan this field";
   const text = sentence(error.message);
   const where = [];
