@@ -10,7 +10,7 @@ import { $, driver, editHint, formatNumber, history, notes, setPlanState, state,
 import { BearingDial } from "./dial.js";
 import { emptyField, plannerInput, setProperties, toCollection } from "./editor.js";
 import { OPENED, openedOption } from "./fields.js";
-import { forgetParcels, parcelCount } from "./parcels.js";
+import { forgetParcels, parcelCount, parcelFile } from "./parcels.js";
 import { replan } from "./planning.js";
 import { fieldParts, fieldScene, inputFeatures, projectFeature, projectionFor } from "./scene.js";
 import { forgetFieldReferences, saveSession, settingsChanged } from "./settings.js";
@@ -219,7 +219,7 @@ export function showEditState() {
   $("delete").disabled = !tool.selection;
   $("undo").disabled = !history.canUndo;
   $("redo").disabled = !history.canRedo;
-  $("export-field").disabled = !editable;
+  $("export-field").disabled = !editable && !parcelFile();
   $("export-plan").disabled = !state.plan;
   const hints = {
     edit: "Drag a corner; tap the mark in the middle of an edge to add one; tap a corner or region, then Delete.",

@@ -4,7 +4,7 @@ import { driver, history, notes, setPlanState, state, ui, view } from "./app.js"
 import { showDriveState, startEditing } from "./editing.js";
 import { sentence } from "./notes.js";
 import { initPlanner, readFile } from "./planner.js";
-import { forgetParcels, parcelFeatures, showParcels } from "./parcels.js";
+import { forgetParcels, parcelFeatures, parcelFile, showParcels } from "./parcels.js";
 import { replan, showFailure } from "./planning.js";
 import { sizeError } from "./reading.js";
 import { fieldParts, fieldScene, inputFeatures, parseForDrawing, projectFeature, projectionFor } from "./scene.js";
@@ -128,7 +128,7 @@ export async function loadField(input, name = "Opened field", { edited = false, 
   if (parcels) {
     startEditing(null);
     state.source = null; // nothing to plan until a parcel is picked
-    showParcels(parcels, name);
+    showParcels(parcels, name, state.field);
     return { plan: null, error: null };
   }
   startEditing(state.field, { edited });
@@ -222,9 +222,9 @@ export function fileName() {
 }
 
 /** The field as GeoJSON text: the document as edited (a file opened and not edited comes back
- * as it was read). */
+ * as it was read, a file of parcels too while none is picked). */
 export function fieldText() {
-  const doc = history.doc;
+  const doc = history.doc ?? parcelFile();
   return doc ? `${JSON.stringify(doc, null, 1)}\n` : "";
 }
 

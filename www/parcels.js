@@ -17,8 +17,9 @@ const MIN_PX = 10; // a parcel smaller than this on the map is drawn as a dot th
 const HIT_PX = 22; // a tap this near a parcel (half a 44 px touch target) picks it
 const LABEL_PX = 60; // parcels at least this wide on the map carry their name
 
-/** The picker: the file's parcels, the search, the parcel picked (an index) or null. */
-export const picker = { name: "", features: [], parcels: [], query: "", picked: null, hover: null };
+/** The picker: the file's parcels (and the file as read, to save it again), the search, the
+ * parcel picked (an index) or null. */
+export const picker = { name: "", source: null, features: [], parcels: [], query: "", picked: null, hover: null };
 
 const el = {
   panel: $("parcels"),
@@ -70,9 +71,11 @@ export function parcelFeatures(doc) {
 
 /**
  * Shows `features` (GeoJSON Features; those with a polygon are the parcels) on the map and in
- * the list, to pick the one to plan; `name` is the file's.
+ * the list, to pick the one to plan; `name` is the file's, `source` the file as read (what
+ * *Save field* writes while no parcel is picked; by default a FeatureCollection of `features`).
  */
-export function showParcels(features, name) {
+export function showParcels(features, name, source = picker.features === features ? picker.source : null) {
+  picker.source = source ?? { type: "FeatureCollection", features };
   if (features !== picker.features) {
     picker.features = features;
     picker.parcels = parcelsOf(features);
@@ -118,10 +121,15 @@ export function showParcels(features, name) {
 /** Forgets the file of parcels (another field is shown). */
 export function forgetParcels() {
   if (!picker.features.length) return;
-  Object.assign(picker, { name: "", features: [], parcels: [], query: "", picked: null, hover: null });
+  Object.assign(picker, { name: "", source: null, features: [], parcels: [], query: "", picked: null, hover: null });
   el.search.value = "";
   el.list.replaceChildren();
   renderPanel();
+}
+
+/** The file of parcels as read while one is to be picked (to save it again), else null. */
+export function parcelFile() {
+  return picker.features.length && picker.picked == null ? picker.source : null;
 }
 
 /** How many parcels the file shown has (0: it is not a file of parcels). */
