@@ -404,6 +404,7 @@ test("first hour: a file of parcels: a searchable list of names and areas, tap t
     await page.click("#parcels-back");
     await page.waitForSelector("body[data-plan-state=pick]");
     assert.equal((await items()).length, 100);
+    assert.equal(await page.textContent("#field option:checked"), "dk_marker_2026_sample (opened file)", "the file is the one shown again");
     await page.fill("#parcels-search", "063");
     assert.deepEqual((await items()).map((i) => i.name), ["dk_marker_2026_sample_063"]);
     const poplars = file.features.filter((f) => Object.values(f.properties).some((v) => typeof v === "string" && /poppel/i.test(v)));

@@ -119,21 +119,34 @@ export async function loadField(input, name = "Opened field", { edited = false, 
   ui.field.value = OPENED;
   ui.field.disabled = false;
   ui.suggested.disabled = true;
-  ui.note.textContent = parcels
-    ? "A file of parcels: pick the one to plan, on the map or in the list."
-    : edited
-      ? "Drawn or edited here; planned with the settings below."
-      : "Opened from a file; planned with the settings below.";
+  ui.note.textContent = edited ? "Drawn or edited here; planned with the settings below." : "Opened from a file; planned with the settings below.";
   if (location.hash) window.history.replaceState(null, "", location.pathname + location.search);
   if (parcels) {
-    startEditing(null);
-    state.source = null; // nothing to plan until a parcel is picked
-    showParcels(parcels, name, state.field);
+    openParcels(parcels, name, state.field);
     return { plan: null, error: null };
   }
   startEditing(state.field, { edited });
   showField(state.field);
   return replan();
+}
+
+/**
+ * Shows a file's parcels (GeoJSON Features) to pick the one to plan (parcels.js): the file is the
+ * one opened (`source`: as read, to save it again), nothing is planned until a parcel is picked.
+ */
+export function openParcels(features, name, source = null) {
+  state.loadToken++; // a parcel still loading is not shown over the list
+  state.opened = { source: source ?? { type: "FeatureCollection", features }, name };
+  state.entry = { name, opened: true };
+  state.edited = false;
+  openedOption(name);
+  ui.field.value = OPENED;
+  ui.suggested.disabled = true;
+  ui.note.textContent = "A file of parcels: pick the one to plan, on the map or in the list.";
+  if (location.hash) window.history.replaceState(null, "", location.pathname + location.search);
+  startEditing(null);
+  state.source = null;
+  showParcels(features, name, source);
 }
 
 /** The field picker's entry for the opened file, first in the list. */

@@ -25,11 +25,12 @@ import {
   loadField,
   loadFieldFile,
   openFile,
+  openParcels,
   openedOption,
   planText,
   selectField,
 } from "./fields.js";
-import { bindParcels, picker, showParcels } from "./parcels.js";
+import { bindParcels, picker } from "./parcels.js";
 import { initPlanner } from "./planner.js";
 import { replan, showFailure, updateHighlights } from "./planning.js";
 import { applySuggested, readOptions, readSession, restoreSettings, saveSettings, settingsChanged, showDirectionInputs, showMoreState } from "./settings.js";
@@ -71,7 +72,7 @@ window.furrow = {
   selectField,
   loadField,
   /** A file's parcels (GeoJSON Features) to pick the one to plan from, and the picker. */
-  showParcels,
+  showParcels: openParcels,
   parcels: picker,
   exportField: fieldText,
   exportPlan: planText,

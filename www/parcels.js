@@ -4,12 +4,13 @@
 // by a finger's width, or in the list) plans it as a field of its own; "All parcels" comes back
 // to the list.
 //
-// The picker is fed a plain list of GeoJSON Features (`showParcels(features, name)`), whatever
-// file they were read from. State for tests: body[data-plan-state=pick] while a parcel is to be
-// picked, window.furrow.parcels the picker.
+// The picker is fed a plain list of GeoJSON Features, whatever file they were read from:
+// `openParcels(features, name)` (fields.js, also window.furrow.showParcels) opens them as the
+// file shown. State for tests: body[data-plan-state=pick] while a parcel is to be picked,
+// window.furrow.parcels the picker.
 import { $, history, layers, notes, setPlanState, state, tool, ui, view, formatNumber } from "./app.js";
 import { roleOf, toCollection } from "./editor.js";
-import { loadField } from "./fields.js";
+import { loadField, openParcels } from "./fields.js";
 import { insidePolygon, labelPoint, makeProjection } from "./scene.js";
 import { renderWarnings } from "./summary.js";
 
@@ -47,7 +48,7 @@ export function bindParcels() {
     const first = picker.parcels.find(matches);
     if (first) pickParcel(first.index);
   });
-  el.back.addEventListener("click", () => showParcels(picker.features, picker.name));
+  el.back.addEventListener("click", () => openParcels(picker.features, picker.name, picker.source));
   el.list.addEventListener("click", (e) => {
     const button = e.target.closest("button[data-index]");
     if (button) pickParcel(Number(button.dataset.index));
