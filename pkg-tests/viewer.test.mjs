@@ -322,8 +322,18 @@ test("viewer: obstacle classes, lifted swaths, headland only where needed", { ti
     assert.match(await dd("uncovered_headland_area_m2").innerText(), /^\d[\d,.]* (m²|ha)$/);
     assert.match(await dd("headland_area_m2").innerText(), /^\d[\d,.]* ha$/);
     assert.match(await dd("lifted_distance_m").innerText(), /^\d+ m$/);
+    // Coverage: the figure against the reachable limit, the parts left standing drawn in red.
+    const cov = plan.summary.coverage;
+    const pct = (x) => (x * 100).toFixed(1);
+    assert.equal(await dd("coverage").innerText(), `${pct(cov.coverage_ratio)} % of ${pct(cov.reachable_ratio)} % reachable`);
+    assert.match(await dd("uncovered_area_m2").innerText(), /^\d[\d,.]* (m²|ha)$/);
+    const parts = await page.evaluate(() => window.furrow.plan.features.filter((f) => f.properties.kind === "uncovered").length);
+    assert.ok(parts > 0, "the plan leaves some crop standing round the obstacles");
+    assert.equal(await page.evaluate(() => window.furrow.view.drawn.uncovered), parts, "each part drawn");
     const legend = await page.textContent(".legend");
-    for (const item of ["Obstacle class", "Obstacle group", "Implement lifted"]) assert.ok(legend.includes(item), item);
+    for (const item of ["Obstacle class", "Obstacle group", "Implement lifted", "Crop left standing"]) {
+      assert.ok(legend.includes(item), item);
+    }
     assert.deepEqual(await page.locator("#obstacle-classes .class-tag").allInnerTexts(), ["A", "B", "C", "D"]);
     await page.screenshot({ path: join(SHOTS, "viewer-classes.png") });
     await page.locator(".info").screenshot({ path: join(SHOTS, "viewer-classes-summary.png") });

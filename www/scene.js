@@ -119,7 +119,8 @@ export function fieldScene(parts, projection) {
 
 /**
  * The plan in local metres: blocks with a label point, obstacles with their class (A-D) and a
- * label point, obstacle groups (the hulls class-C obstacles were merged into), the drivable
+ * label point, obstacle groups (the hulls class-C obstacles were merged into), the parts of the
+ * field left uncovered (`uncovered`: rings, `area_m2`, `reachable_m2`), the drivable
  * segments by kind (each `{ points, props }`; a swath the implement is lifted on also has
  * `worked` and `lifted`, lists of pieces), and where the route starts and ends.
  */
@@ -129,6 +130,7 @@ export function planScene(plan, projection) {
     blocks: [],
     obstacles: [],
     groups: [],
+    uncovered: [],
     paths: { headland: [], swath: [], turn: [], connection: [] },
     start: null,
     end: null,
@@ -156,6 +158,9 @@ export function planScene(plan, projection) {
     } else if (props.kind === "obstacle_group" && geometry?.type === "Polygon") {
       const rings = projectPolygon(geometry.coordinates, f);
       if (rings[0]?.length) scene.groups.push({ rings, index: props.index, members: props.members ?? [] });
+    } else if (props.kind === "uncovered" && geometry?.type === "Polygon") {
+      const rings = projectPolygon(geometry.coordinates, f);
+      if (rings[0]?.length) scene.uncovered.push({ rings, area_m2: props.area_m2, reachable_m2: props.reachable_m2 });
     } else if (props.kind in scene.paths && geometry?.type === "LineString") {
       const points = projectRing(geometry.coordinates, f);
       if (points.length < 2) continue;

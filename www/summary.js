@@ -48,6 +48,29 @@ export function renderSummary(s, options, callMs) {
       : []),
     ["Connections", km(s.connection_distance_m), { key: "connection_distance_m" }],
     ["Total distance", km(s.total_distance_m), { key: "total_distance_m", cls: "total" }],
+    ...(s.coverage
+      ? [
+          [
+            "Field covered",
+            `${formatNumber(num(s.coverage.coverage_ratio) * 100, 1)} % of ${formatNumber(num(s.coverage.reachable_ratio) * 100, 1)} % reachable`,
+            {
+              key: "coverage",
+              cls: "total",
+              title: "The field worked by the implement, and the most a strip of its width can reach (the parts left standing are drawn in red)",
+            },
+          ],
+          [
+            "Left standing",
+            area(s.coverage.uncovered_area_m2),
+            { key: "uncovered_area_m2", title: "Crop no working stretch covers" },
+          ],
+          [
+            "Worked twice",
+            `${formatNumber(num(s.coverage.overlap_ratio) * 100, 1)} %`,
+            { key: "overlap_ratio", title: "Area worked twice or more, over the field area" },
+          ],
+        ]
+      : []),
     ["Field area", ha(s.field_area_m2), { key: "field_area_m2" }],
     ["Headland area", ha(s.headland_area_m2), { key: "headland_area_m2" }],
     [
@@ -72,7 +95,7 @@ export function renderSummary(s, options, callMs) {
       { key: "direction", title: "How the direction was chosen, and the cost of the plan's swaths" },
     ],
     [
-      "Coverage",
+      "Inner field by swaths",
       `${formatNumber(num(s.objectives?.coverage) * 100, 2)} %`,
       { key: "objectives", title: "Share of the inner field the swaths' strips cover" },
     ],

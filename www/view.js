@@ -17,6 +17,7 @@ export const THEME_VARS = {
   obstacleFill: ["--obstacle-fill", "#6f5641"],
   obstacleStroke: ["--obstacle-stroke", "#3b2a1b"],
   group: ["--obstacle-group", "#3b2a1b"],
+  uncovered: ["--uncovered", "#d0021b"],
   classFill: ["--class-fill", "#3b2a1b"],
   classText: ["--class-text", "#ffffff"],
   prohibited: ["--prohibited", "#c8341c"],
@@ -101,7 +102,7 @@ export class PlanView {
     this.onDraw = null; // called after every frame, to move what lies over the canvas
     // What the last frame drew, for tests and debugging: the obstacle class labels in view
     // ({ text, index, x, y } in CSS px of the canvas), and the lifted stretches of swaths.
-    this.drawn = { classLabels: [], liftedStretches: 0 };
+    this.drawn = { classLabels: [], liftedStretches: 0, uncovered: 0 };
 
     this.bindPointers();
     new ResizeObserver(() => this.resize()).observe(canvas);
@@ -400,7 +401,7 @@ export class PlanView {
     ctx.setTransform(this.dpr, 0, 0, this.dpr, 0, 0);
     ctx.lineJoin = "round";
     ctx.lineCap = "round";
-    this.drawn = { classLabels: [], liftedStretches: 0, tiles: 0 };
+    this.drawn = { classLabels: [], liftedStretches: 0, tiles: 0, uncovered: 0 };
 
     const field = this.field;
     const plan = this.plan;
@@ -423,6 +424,7 @@ export class PlanView {
       }
     }
     if (plan) this.drawGroups(plan.groups ?? []);
+    if (plan) this.drawUncovered(plan.uncovered ?? []);
     if (field?.boundary) {
       this.polygonPath(field.boundary);
       ctx.lineWidth = 2.5;
@@ -501,6 +503,25 @@ export class PlanView {
       ctx.setLineDash([7, 5]);
       ctx.lineWidth = 2;
       ctx.strokeStyle = t.group;
+      ctx.stroke();
+      ctx.setLineDash([]);
+    }
+  }
+
+  /** The crop the plan leaves standing: red, dashed where the implement could not reach it. */
+  drawUncovered(parts) {
+    const { ctx, theme: t } = this;
+    this.drawn.uncovered = parts.length;
+    for (const part of parts) {
+      this.polygonPath(part.rings);
+      const reachable = (part.reachable_m2 ?? 0) > 0.5 * (part.area_m2 ?? 0);
+      ctx.fillStyle = t.uncovered;
+      ctx.globalAlpha = reachable ? 0.35 : 0.15;
+      ctx.fill("evenodd");
+      ctx.globalAlpha = 1;
+      ctx.lineWidth = 1.5;
+      ctx.strokeStyle = t.uncovered;
+      ctx.setLineDash(reachable ? [] : [4, 3]);
       ctx.stroke();
       ctx.setLineDash([]);
     }

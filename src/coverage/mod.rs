@@ -23,6 +23,7 @@ use crate::geometry::Extremes;
 use crate::headland::offset::open;
 use crate::path::Path;
 use crate::route::{Route, RouteStep};
+use crate::sort::SharedSort;
 use crate::swath::Swaths;
 use geo::{BooleanOps, BoundingRect, Coord, MultiPolygon, Polygon};
 use raster::Grid;
@@ -163,9 +164,9 @@ pub fn worked_lines(swaths: &Swaths, route: &Route, path: &Path) -> Vec<Vec<Coor
 /// Which cells are in the field and off its obstacles.
 fn field_cells(grid: &Grid, boundary: &Polygon, obstacles: &[Polygon]) -> Vec<bool> {
     let mut field = vec![false; grid.len()];
-    grid.fill_polygon(boundary, |i| field[i] = true);
+    grid.fill_polygon(boundary, &mut |i| field[i] = true);
     for o in obstacles {
-        grid.fill_polygon(o, |i| field[i] = false);
+        grid.fill_polygon(o, &mut |i| field[i] = false);
     }
     field
 }
@@ -222,7 +223,7 @@ fn reachable_cells(
     };
     let mut reachable: Vec<bool> = counts.iter().map(|&c| c > 0).collect();
     for polygon in &open(&region, radius).0 {
-        grid.fill_polygon(polygon, |i| reachable[i] |= field[i]);
+        grid.fill_polygon(polygon, &mut |i| reachable[i] |= field[i]);
     }
     reachable
 }
@@ -279,7 +280,7 @@ fn standing_parts(
                 })
             })
             .collect();
-    out.sort_by(|x, y| y.area_m2.total_cmp(&x.area_m2));
+    out.shared_sort_by(|x, y| y.area_m2.total_cmp(&x.area_m2));
     out
 }
 

@@ -3,8 +3,8 @@
 
 use super::raster::Grid;
 use crate::geometry::{sleeve_ring, Sleeve};
+use crate::sort::SharedSort;
 use geo::{Coord, LineString, Polygon};
-use std::collections::HashMap;
 
 /// One connected part of a set of cells.
 #[derive(Debug, Clone, PartialEq)]
@@ -62,7 +62,7 @@ pub fn parts(columns: usize, rows: usize, in_set: impl Fn(usize) -> bool) -> Vec
                 push(c + columns);
             }
         }
-        cells.sort_unstable();
+        cells.shared_sort_unstable_by(usize::cmp);
         out.push(Part { cells });
     }
     out
@@ -71,42 +71,43 @@ pub fn parts(columns: usize, rows: usize, in_set: impl Fn(usize) -> bool) -> Vec
 /// The outline of a part as a polygon (outer ring counter-clockwise, holes clockwise), its
 /// staircases smoothed to within `smoothing` metres.
 pub fn outline(grid: &Grid, part: &Part, smoothing: f64) -> Option<Polygon> {
-    let member: std::collections::HashSet<usize> = part.cells.iter().copied().collect();
     let inside = |i: isize, j: isize| {
         i >= 0
             && j >= 0
             && (i as usize) < grid.columns
             && (j as usize) < grid.rows
-            && member.contains(&(j as usize * grid.columns + i as usize))
+            && part
+                .cells
+                .binary_search(&(j as usize * grid.columns + i as usize))
+                .is_ok()
     };
-    // Directed sides with the part on their left, keyed by the grid corner they start from.
-    let mut sides: HashMap<(isize, isize), Vec<(isize, isize)>> = HashMap::new();
+    // Directed sides with the part on their left: (from corner, to corner).
+    let mut sides: Vec<(Corner, Corner)> = Vec::new();
     for &c in &part.cells {
         let (i, j) = ((c % grid.columns) as isize, (c / grid.columns) as isize);
         if !inside(i, j - 1) {
-            sides.entry((i, j)).or_default().push((i + 1, j));
+            sides.push(((i, j), (i + 1, j)));
         }
         if !inside(i + 1, j) {
-            sides.entry((i + 1, j)).or_default().push((i + 1, j + 1));
+            sides.push(((i + 1, j), (i + 1, j + 1)));
         }
         if !inside(i, j + 1) {
-            sides.entry((i + 1, j + 1)).or_default().push((i, j + 1));
+            sides.push(((i + 1, j + 1), (i, j + 1)));
         }
         if !inside(i - 1, j) {
-            sides.entry((i, j + 1)).or_default().push((i, j));
+            sides.push(((i, j + 1), (i, j)));
         }
     }
-    let mut rings = trace(&mut sides);
-    let corner = |(i, j): (isize, isize)| grid.corner(i.max(0) as usize, j.max(0) as usize);
-    let mut polygons: Vec<LineString> = rings
-        .drain(..)
+    sides.shared_sort_unstable_by(|a, b| a.cmp(b));
+    let corner = |(i, j): Corner| grid.corner(i.max(0) as usize, j.max(0) as usize);
+    let mut rings: Vec<LineString> = trace(&sides)
+        .into_iter()
         .filter_map(|ring| {
             let points: Vec<Coord> = ring.into_iter().map(corner).collect();
-            let smooth = sleeve_ring(&points, Sleeve::both(smoothing));
+            let mut smooth = sleeve_ring(&points, Sleeve::both(smoothing));
             (smooth.len() >= 3).then(|| {
-                let mut closed = smooth;
-                closed.push(closed[0]);
-                LineString::new(closed)
+                smooth.push(smooth[0]);
+                LineString::new(smooth)
             })
         })
         .collect();
@@ -116,53 +117,59 @@ pub fn outline(grid: &Grid, part: &Part, smoothing: f64) -> Option<Polygon> {
             .map(|w| w[0].x * w[1].y - w[1].x * w[0].y)
             .sum::<f64>()
     };
-    let outer =
-        (0..polygons.len()).max_by(|&a, &b| area(&polygons[a]).total_cmp(&area(&polygons[b])))?;
-    let exterior = polygons.swap_remove(outer);
-    Some(Polygon::new(exterior, polygons))
+    let outer = (0..rings.len()).max_by(|&a, &b| area(&rings[a]).total_cmp(&area(&rings[b])))?;
+    let exterior = rings.swap_remove(outer);
+    Some(Polygon::new(exterior, rings))
 }
 
-/// Links directed sides into closed rings. Where two rings touch at a corner, the side taken is
-/// the one turning most to the left, so that rings never cross.
-fn trace(sides: &mut HashMap<(isize, isize), Vec<(isize, isize)>>) -> Vec<Vec<(isize, isize)>> {
-    let mut starts: Vec<(isize, isize)> = sides.keys().copied().collect();
-    starts.sort_unstable();
+/// A corner of the grid's cells: (column line, row line).
+type Corner = (isize, isize);
+
+/// Links directed sides (sorted) into closed rings. Where two rings touch at a corner, the side
+/// taken is the one turning most to the left, so that rings never cross.
+fn trace(sides: &[(Corner, Corner)]) -> Vec<Vec<Corner>> {
+    let mut used = vec![false; sides.len()];
     let mut rings = Vec::new();
-    for start in starts {
-        while sides.get(&start).is_some_and(|v| !v.is_empty()) {
-            let mut ring = vec![start];
-            let mut from = start;
-            let mut heading = (0, 0);
-            while let Some(next) = take_side(sides, from, heading) {
-                heading = (next.0 - from.0, next.1 - from.1);
-                from = next;
-                if next == start {
-                    break;
-                }
-                ring.push(next);
-            }
-            if ring.len() >= 4 {
-                rings.push(ring);
-            }
+    for first in 0..sides.len() {
+        if used[first] {
+            continue;
+        }
+        used[first] = true;
+        let (start, mut at) = sides[first];
+        let mut heading = (at.0 - start.0, at.1 - start.1);
+        let mut ring = vec![start];
+        while at != start {
+            ring.push(at);
+            let Some(k) = next_side(sides, &used, at, heading) else {
+                break;
+            };
+            used[k] = true;
+            heading = (sides[k].1 .0 - at.0, sides[k].1 .1 - at.1);
+            at = sides[k].1;
+        }
+        if ring.len() >= 4 {
+            rings.push(ring);
         }
     }
     rings
 }
 
-/// Takes the side leaving `corner` that turns most to the left of `heading` (any side for the
-/// first step of a ring).
-fn take_side(
-    sides: &mut HashMap<(isize, isize), Vec<(isize, isize)>>,
-    corner: (isize, isize),
+/// The unused side leaving `corner` that turns most to the left of `heading`.
+fn next_side(
+    sides: &[(Corner, Corner)],
+    used: &[bool],
+    corner: Corner,
     heading: (isize, isize),
-) -> Option<(isize, isize)> {
-    let out = sides.get_mut(&corner)?;
-    let k = (0..out.len()).max_by_key(|&k| {
-        let d = (out[k].0 - corner.0, out[k].1 - corner.1);
-        // Left turn 2, straight 1, right turn 0.
-        heading.0 * d.1 - heading.1 * d.0 + 1
-    })?;
-    Some(out.swap_remove(k))
+) -> Option<usize> {
+    let from = sides.partition_point(|s| s.0 < corner);
+    (from..sides.len())
+        .take_while(|&k| sides[k].0 == corner)
+        .filter(|&k| !used[k])
+        .max_by_key(|&k| {
+            let d = (sides[k].1 .0 - corner.0, sides[k].1 .1 - corner.1);
+            // Left turn 2, straight on 1, right turn 0.
+            heading.0 * d.1 - heading.1 * d.0 + 1
+        })
 }
 
 #[cfg(test)]

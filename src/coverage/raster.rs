@@ -6,6 +6,7 @@
 //! bias: the error is a fraction of a cell along the shape's outline, half of it either way.
 
 use crate::geometry::{Extremes, PlanarHypot};
+use crate::sort::SharedSort;
 use geo::{Coord, LineString, Polygon, Rect};
 
 /// A grid of `columns` by `rows` square cells of side `cell` metres, the first cell's lower-left
@@ -95,15 +96,15 @@ impl Grid {
 
     /// Calls `visit` with the index of each cell whose centre lies in the polygon (even-odd over
     /// its rings).
-    pub fn fill_polygon(&self, polygon: &Polygon, mut visit: impl FnMut(usize)) {
+    pub fn fill_polygon(&self, polygon: &Polygon, visit: &mut dyn FnMut(usize)) {
         let rings = std::iter::once(polygon.exterior()).chain(polygon.interiors());
         let edges: Vec<(Coord, Coord)> = rings.flat_map(ring_edges).collect();
-        self.fill_edges(edges, &mut visit);
+        self.fill_edges(edges, visit);
     }
 
     /// The even-odd fill of a set of edges, row by row: the edges crossing each row's centre
     /// line, in order across it, bound the stretches inside.
-    fn fill_edges(&self, mut edges: Vec<(Coord, Coord)>, visit: &mut impl FnMut(usize)) {
+    fn fill_edges(&self, mut edges: Vec<(Coord, Coord)>, visit: &mut dyn FnMut(usize)) {
         // Each edge from its lower end; sorted by it, so that a row's edges are found in order.
         for e in &mut edges {
             if e.0.y > e.1.y {
@@ -111,7 +112,7 @@ impl Grid {
             }
         }
         edges.retain(|e| e.0.y < e.1.y);
-        edges.sort_by(|a, b| a.0.y.total_cmp(&b.0.y));
+        edges.shared_sort_by_float_key(|e| e.0.y);
         let Some(low) = edges.first().map(|e| e.0.y) else {
             return;
         };
@@ -132,7 +133,7 @@ impl Grid {
                 let (a, b) = edges[k];
                 a.x + (b.x - a.x) * (y - a.y) / (b.y - a.y)
             }));
-            xs.sort_by(f64::total_cmp);
+            xs.shared_sort_unstable_by(f64::total_cmp);
             for pair in xs.chunks_exact(2) {
                 for i in self.columns_between(pair[0], pair[1]) {
                     visit(j * self.columns + i);
@@ -144,7 +145,7 @@ impl Grid {
     /// Calls `visit` with each cell whose centre lies within `half_width` of the segment from
     /// `a` to `b` measured square to it, and between its ends: the strip an implement of twice
     /// that width sweeps along it.
-    pub fn fill_strip(&self, a: Coord, b: Coord, half_width: f64, visit: impl FnMut(usize)) {
+    pub fn fill_strip(&self, a: Coord, b: Coord, half_width: f64, visit: &mut dyn FnMut(usize)) {
         let d = b - a;
         let length = d.x.planar_hypot(d.y);
         if length.is_nan() || length <= 0.0 || half_width.is_nan() || half_width <= 0.0 {
@@ -159,7 +160,7 @@ impl Grid {
     }
 
     /// Calls `visit` with each cell whose centre lies within `radius` of `c`.
-    pub fn fill_disc(&self, c: Coord, radius: f64, mut visit: impl FnMut(usize)) {
+    pub fn fill_disc(&self, c: Coord, radius: f64, visit: &mut dyn FnMut(usize)) {
         if radius.is_nan() || radius <= 0.0 {
             return;
         }
@@ -173,7 +174,7 @@ impl Grid {
     }
 
     /// The cells of a convex polygon (its corners in order, either way round).
-    fn fill_convex(&self, corners: &[Coord], mut visit: impl FnMut(usize)) {
+    fn fill_convex(&self, corners: &[Coord], visit: &mut dyn FnMut(usize)) {
         let (low, high) = corners
             .iter()
             .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), c| {
