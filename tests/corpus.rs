@@ -208,7 +208,7 @@ fn check_path(plan: &Plan, name: &str) {
                 assert_eq!(f["geometry"]["type"], "LineString");
                 next += 1;
             }
-            "block" | "obstacle" | "obstacle_group" => {
+            "block" | "obstacle" | "obstacle_group" | "uncovered" => {
                 assert_eq!(f["geometry"]["type"], "Polygon")
             }
             other => panic!("{name}: unknown kind {other}"),
