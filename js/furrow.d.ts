@@ -22,6 +22,7 @@ export type {
   Position,
   PlanFeature,
   PlanSummary,
+  CoverageSummary,
   StageTimes,
   DirectionReport,
   DecompositionReport,

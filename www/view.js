@@ -17,7 +17,7 @@ export const THEME_VARS = {
   obstacleFill: ["--obstacle-fill", "#6f5641"],
   obstacleStroke: ["--obstacle-stroke", "#3b2a1b"],
   group: ["--obstacle-group", "#3b2a1b"],
-  uncovered: ["--uncovered", "#d0021b"],
+  uncovered: ["--uncovered", "#6a1fd1"],
   classFill: ["--class-fill", "#3b2a1b"],
   classText: ["--class-text", "#ffffff"],
   prohibited: ["--prohibited", "#c8341c"],
