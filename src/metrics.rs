@@ -160,8 +160,8 @@ pub struct RouteReport {
     /// The swath order of each block in working order (`boustrophedon`, `snake-1`,
     /// `spiral-6`, `custom`).
     pub block_patterns: Vec<String>,
-    /// How the block order was found: `exact` (dynamic programming) or `ant-colony` (with local
-    /// search).
+    /// How the block order was found: `exact` (dynamic programming), `ant-colony` (with local
+    /// search) or `nearest-neighbour` (each next block the nearest, for many blocks).
     pub sequence: &'static str,
     /// Connections that found no way along the headland and run straight.
     pub straight_connections: usize,

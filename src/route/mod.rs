@@ -10,6 +10,8 @@
 //!   problem over the blocks' entry and exit points (Zhou et al. 2.4): exact by dynamic
 //!   programming while its table is small (up to 11 blocks of four ways), by ant colony and
 //!   local search beyond.
+//! - [`nearest`]: the plain order for fields of many blocks (more than 1,024 ways, 256 blocks
+//!   of four), whose connection table would take gigabytes: each next block the nearest.
 //!
 //! The headland passes come last, as in seeding (Zhou et al. 2.1), from the innermost out, so the
 //! machine finishes on the outermost pass at the field edge; or first, as in harvesting, from the
@@ -21,6 +23,7 @@
 //! starts best) and ends at the exit when one is given.
 
 pub mod headland_graph;
+pub mod nearest;
 pub mod pattern;
 pub mod sequence;
 
@@ -256,35 +259,15 @@ pub fn plan_route_on(
     // reaches.
     let finish_on_headland =
         !graph.is_empty() && (settings.exit.is_some() || passes.iter().any(|p| !not_island(p)));
-    let plain = build_problem(
+    let (solution, chosen_ways) = sequence_blocks(
         &block_ways,
         s,
         position,
         graph,
         &unlimited,
-        false,
         finish_on_headland,
+        settings.seed,
     );
-    let mut solution = sequence::solve(&plain.problem, settings.seed);
-    let mut chosen = plain;
-    if solution.cost >= CROSSING_PENALTY_M {
-        // Some block leaves the machine where the headland offers no way on: let a block also
-        // end by driving back along its last swath, worked by then, to its other end.
-        let returning = build_problem(
-            &block_ways,
-            s,
-            position,
-            graph,
-            &unlimited,
-            true,
-            finish_on_headland,
-        );
-        let second = sequence::solve(&returning.problem, settings.seed);
-        if second.cost < solution.cost {
-            solution = second;
-            chosen = returning;
-        }
-    }
     route.sequence = SequenceReport {
         method: solution.method,
         cost_m: solution.cost,
@@ -294,7 +277,7 @@ pub fn plan_route_on(
     let mut steps = pass_steps;
     let mut returns_after: Vec<usize> = Vec::new(); // steps after which the machine drives back
     for &(b, wi) in &solution.order {
-        let Some(&(wi, returns)) = chosen.ways.get(b).and_then(|w| w.get(wi)) else {
+        let Some(&(wi, returns)) = chosen_ways.get(b).and_then(|w| w.get(wi)) else {
             continue;
         };
         let Some(w) = block_ways.get(b).and_then(|w| w.get(wi)) else {
@@ -435,6 +418,61 @@ pub fn plan_route_on(
     route
 }
 
+/// The block order and the way of each block, and for each block and way of the order the way
+/// in `block_ways` it stands for and whether it ends by driving back along its last swath.
+///
+/// Up to [`nearest::MAX_SEQUENCED_WAYS`] ways in all the order is sequenced
+/// ([`sequence::solve`]) over the connections along the headland graph; beyond, it is the plain
+/// [`nearest::nearest_order`].
+fn sequence_blocks(
+    block_ways: &[Vec<BlockWay>],
+    s: &[crate::swath::Swath],
+    position: Option<Coord>,
+    graph: &HeadlandGraph,
+    unlimited: &[usize],
+    finish_on_headland: bool,
+    seed: u64,
+) -> (sequence::Sequence, Vec<Vec<(usize, bool)>>) {
+    let ways: usize = block_ways.iter().map(Vec::len).sum();
+    if ways > nearest::MAX_SEQUENCED_WAYS {
+        let own = block_ways
+            .iter()
+            .map(|w| (0..w.len()).map(|wi| (wi, false)).collect())
+            .collect();
+        return (nearest::nearest_order(block_ways, s, position), own);
+    }
+    let plain = build_problem(
+        block_ways,
+        s,
+        position,
+        graph,
+        unlimited,
+        false,
+        finish_on_headland,
+    );
+    let solution = sequence::solve(&plain.problem, seed);
+    if solution.cost < CROSSING_PENALTY_M {
+        return (solution, plain.ways);
+    }
+    // Some block leaves the machine where the headland offers no way on: let a block also end
+    // by driving back along its last swath, worked by then, to its other end.
+    let returning = build_problem(
+        block_ways,
+        s,
+        position,
+        graph,
+        unlimited,
+        true,
+        finish_on_headland,
+    );
+    let second = sequence::solve(&returning.problem, seed);
+    if second.cost < solution.cost {
+        (second, returning.ways)
+    } else {
+        (solution, plain.ways)
+    }
+}
+
 /// Each block's pattern (the cheapest of `settings.orders` by the mean turning of its four
 /// ways; the first on a tie) and its ways in that pattern.
 fn cheapest_ways(
@@ -519,8 +557,8 @@ fn build_problem(
         let mut which = Vec::with_capacity(wlist.len());
         for (wi, w) in wlist.iter().enumerate() {
             let (Some(entry), Some(exit), Some(last)) = (
-                way_entry(w, s),
-                way_exit(w, s),
+                w.entry(s),
+                w.exit(s),
                 w.swaths.last().and_then(|&i| s.get(i)),
             ) else {
                 continue;
@@ -601,28 +639,6 @@ fn build_problem(
         },
         ways,
     }
-}
-
-/// Where a way starts: the start of its first swath as driven.
-fn way_entry(w: &BlockWay, s: &[crate::swath::Swath]) -> Option<Coord> {
-    let first = s.get(*w.swaths.first()?)?;
-    Some(if w.first_reversed {
-        first.centre.end
-    } else {
-        first.centre.start
-    })
-}
-
-/// Where a way ends: the end of its last swath as driven.
-fn way_exit(w: &BlockWay, s: &[crate::swath::Swath]) -> Option<Coord> {
-    let last = s.get(*w.swaths.last()?)?;
-    // Each swath is driven the other way from the one before.
-    let reversed = w.first_reversed ^ w.swaths.len().is_multiple_of(2);
-    Some(if reversed {
-        last.centre.start
-    } else {
-        last.centre.end
-    })
 }
 
 /// The index of a point in `points`, added if new.
@@ -871,6 +887,50 @@ mod tests {
         let mut order = route.block_order.clone();
         order.sort_unstable();
         assert_eq!(order, vec![0, 1, 2, 3]);
+    }
+
+    #[test]
+    fn many_blocks_are_ordered_nearest_first() {
+        // 300 separate strips of two swaths: 1,200 ways, too many to sequence.
+        let strips: Vec<geo::Polygon> = (0..300)
+            .map(|i| {
+                let (x, y) = ((i % 20) as f64 * 30.0, (i / 20) as f64 * 60.0);
+                polygon![(x: x, y: y), (x: x + 12., y: y), (x: x + 12., y: y + 40.), (x: x, y: y + 40.)]
+            })
+            .collect();
+        let swaths = generate(&MultiPolygon::new(strips), 0.0, 6.0, 6.0).unwrap();
+        let blocks = cluster_swaths(&swaths);
+        assert_eq!(blocks.blocks.len(), 300);
+        let route = boustrophedon(&swaths, &blocks, &[], HeadlandOrder::Last, None);
+        assert_eq!(route.sequence.method, SequenceMethod::NearestNeighbour);
+        let mut seen: Vec<usize> = route
+            .steps
+            .iter()
+            .filter_map(|s| match s {
+                RouteStep::Swath { swath, .. } => Some(*swath),
+                _ => None,
+            })
+            .collect();
+        seen.sort_unstable();
+        assert_eq!(seen, (0..swaths.swaths.len()).collect::<Vec<_>>());
+        // Each block's two swaths one after the other, the second driven back.
+        for pair in route.steps.chunks(2) {
+            match pair {
+                [RouteStep::Swath {
+                    block: a,
+                    reversed: x,
+                    ..
+                }, RouteStep::Swath {
+                    block: b,
+                    reversed: y,
+                    ..
+                }] => {
+                    assert_eq!(a, b);
+                    assert_ne!(x, y);
+                }
+                _ => panic!("two swaths a block"),
+            }
+        }
     }
 
     #[test]

@@ -215,6 +215,31 @@ pub struct BlockWay {
     pub turning_m: f64,
 }
 
+impl BlockWay {
+    /// Where the way starts: the start of its first swath as driven (`None` without swaths, or
+    /// with an index outside `swaths`).
+    pub fn entry(&self, swaths: &[Swath]) -> Option<geo::Coord> {
+        let first = swaths.get(*self.swaths.first()?)?;
+        Some(if self.first_reversed {
+            first.centre.end
+        } else {
+            first.centre.start
+        })
+    }
+
+    /// Where the way ends: the end of its last swath as driven.
+    pub fn exit(&self, swaths: &[Swath]) -> Option<geo::Coord> {
+        let last = swaths.get(*self.swaths.last()?)?;
+        // Each swath is driven the other way from the one before.
+        let reversed = self.first_reversed ^ self.swaths.len().is_multiple_of(2);
+        Some(if reversed {
+            last.centre.start
+        } else {
+            last.centre.end
+        })
+    }
+}
+
 /// The four ways to work a block in `order`: from its first or its last swath across (the order
 /// mirrored), each driven either way first. `ids` are the block's swaths in line order.
 pub fn ways(
