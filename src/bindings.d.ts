@@ -592,6 +592,7 @@ export type ErrorCode =
   | "option_out_of_range"
   | "input_too_large"
   | "field_too_large"
+  | "field_too_complex"
   | "headland_consumes_field"
   | "no_allowed_direction"
   | "bearing_forbidden"

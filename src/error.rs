@@ -48,6 +48,10 @@ pub enum ErrorCode {
     /// The field is too large to plan: too many kilometres across, or too many swaths at the
     /// working width.
     FieldTooLarge,
+    /// The field is too complex to plan in bounded time and memory at these options: an outline
+    /// too jagged for the working width's headland offsets, or too many blocks for the
+    /// split-and-merge decomposition.
+    FieldTooComplex,
     /// The headland passes leave no inner field to put swaths in.
     HeadlandConsumesField,
     /// Forbidden bearing ranges (global, or of one prohibited region) forbid every direction.
@@ -88,6 +92,7 @@ impl ErrorCode {
         ErrorCode::OptionOutOfRange,
         ErrorCode::InputTooLarge,
         ErrorCode::FieldTooLarge,
+        ErrorCode::FieldTooComplex,
         ErrorCode::HeadlandConsumesField,
         ErrorCode::NoAllowedDirection,
         ErrorCode::BearingForbidden,
@@ -117,6 +122,7 @@ impl ErrorCode {
             ErrorCode::OptionOutOfRange => "option_out_of_range",
             ErrorCode::InputTooLarge => "input_too_large",
             ErrorCode::FieldTooLarge => "field_too_large",
+            ErrorCode::FieldTooComplex => "field_too_complex",
             ErrorCode::HeadlandConsumesField => "headland_consumes_field",
             ErrorCode::NoAllowedDirection => "no_allowed_direction",
             ErrorCode::BearingForbidden => "bearing_forbidden",

@@ -9,7 +9,7 @@ use crate::decompose::block_headlands::cut_block_headlands;
 use crate::decompose::boustrophedon::{self, cluster_into_cells};
 use crate::decompose::cells::MergeRule;
 use crate::decompose::split_merge::{
-    cells_at, improve, split_merge, Criterion, SplitMerge, SplitMergeSettings,
+    cells_at, improve, split_merge, within_limits, Criterion, SplitMerge, SplitMergeSettings,
 };
 use crate::decompose::{cluster_swaths, BlockArea, Blocks, Decomposition};
 use crate::direction::{
@@ -22,6 +22,7 @@ use crate::field::{Field, ProhibitedRegion};
 use crate::geometry::forbids_every_direction;
 use crate::geometry::PlanarHypot;
 use crate::geometry::SweepFrame;
+use crate::headland::complexity::check_offsets;
 use crate::headland::edges::{passes_per_edge, EdgeRule};
 use crate::headland::{build, HeadlandSettings, Headlands};
 use crate::metrics::{
@@ -176,6 +177,22 @@ pub(crate) fn plan_stages(
     let options = with_field.as_ref().unwrap_or(options);
     let width = options.width;
     warnings.extend(field.simplify(width));
+    // An outline too jagged for the width would make the headland insets (and the direction
+    // search's) take minutes and gigabytes: refused before any is tried.
+    let obstacles: Vec<&geo::Polygon> = field.obstacles.iter().map(|o| &o.polygon).collect();
+    let most_passes = options
+        .edge_passes
+        .iter()
+        .map(|e| e.passes)
+        .fold(options.headland_passes, u32::max);
+    check_offsets(
+        &field.boundary,
+        &obstacles,
+        width,
+        most_passes,
+        options.turn_radius,
+    )
+    .map_err(|e| e.at_feature(field.feature))?;
     times.lap(&mut clock, |t| &mut t.validation);
     let forbidden = &options.forbidden_bearings_deg;
     let objective = options.objective.objective();
@@ -342,6 +359,30 @@ pub(crate) fn plan_stages(
         },
     };
     times.lap(&mut clock, |t| &mut t.path);
+    // Split and merge's work grows with the cells and vertices of the inner field: beyond its
+    // limits auto leaves it out, and asking for it is refused.
+    let mut left_out = None;
+    let methods: Vec<Decomposition> = if methods.contains(&Decomposition::SplitMerge) {
+        let tolerance = width * DECOMPOSITION_TOLERANCE;
+        match within_limits(&prepared.headlands.inner, bearing, tolerance) {
+            Ok(()) => methods,
+            Err(why) if options.decomposition == Decomposition::Auto => {
+                left_out = Some(why);
+                methods
+                    .into_iter()
+                    .filter(|&m| m != Decomposition::SplitMerge)
+                    .collect()
+            }
+            Err(why) => {
+                return Err(PlanError::new(
+                    ErrorCode::FieldTooComplex,
+                    format!("the field is too complex for split and merge at {width} m: {why}; use decomposition boustrophedon or none, or a wider working width"),
+                ))
+            }
+        }
+    } else {
+        methods
+    };
     let mut candidates: Vec<Worked> = Vec::with_capacity(methods.len());
     for &m in &methods {
         if m == Decomposition::SplitMerge {
@@ -405,7 +446,7 @@ pub(crate) fn plan_stages(
     }
     let figures: Vec<DecompositionCandidate> = candidates.iter().map(Worked::figures).collect();
     let chosen = candidates.swap_remove(best);
-    let reason = if figures.len() == 1 {
+    let mut reason = if figures.len() == 1 {
         format!("{} as asked", chosen.method.as_str())
     } else {
         let times: Vec<String> = figures
@@ -418,6 +459,9 @@ pub(crate) fn plan_stages(
             times.join(", ")
         )
     };
+    if let Some(why) = left_out {
+        reason.push_str(&format!("; split-merge was not tried: {why}"));
+    }
     let Worked {
         headlands,
         swaths,

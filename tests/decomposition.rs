@@ -354,6 +354,64 @@ fn split_merge_needs_a_searched_direction_and_the_headland_all_around() {
     }
 }
 
+/// A field of `columns x rows` square obstacles 8 m across, 20 m apart, in local metres.
+fn obstacle_grid(columns: usize, rows: usize) -> String {
+    let ring = |x0: f64, y0: f64, x1: f64, y1: f64| {
+        format!("[[[{x0},{y0}],[{x1},{y0}],[{x1},{y1}],[{x0},{y1}],[{x0},{y0}]]]")
+    };
+    let feature = |role: &str, coordinates: String| {
+        format!(
+            r#"{{"type":"Feature","properties":{{"role":"{role}"}},"geometry":{{"type":"Polygon","coordinates":{coordinates}}}}}"#
+        )
+    };
+    let (w, h) = (40.0 + 20.0 * columns as f64, 40.0 + 20.0 * rows as f64);
+    let mut features = vec![feature("boundary", ring(0.0, 0.0, w, h))];
+    for i in 0..columns {
+        for j in 0..rows {
+            let (x, y) = (20.0 + 20.0 * i as f64, 20.0 + 20.0 * j as f64);
+            features.push(feature("obstacle", ring(x, y, x + 8.0, y + 8.0)));
+        }
+    }
+    format!(
+        r#"{{"type":"FeatureCollection","features":[{}]}}"#,
+        features.join(",")
+    )
+}
+
+#[test]
+fn split_merge_is_left_out_of_fields_of_too_many_cells() {
+    // 200 obstacles split the field into some 220 cells: more than split and merge takes on.
+    let text = obstacle_grid(20, 10);
+    let options = PlanOptions {
+        coordinates: furrow::field::Coordinates::Metric,
+        headland_passes: 0,
+        decomposition: Decomposition::SplitMerge,
+        ..PlanOptions::default()
+    };
+    let e = plan_geojson(&text, &options).expect_err("refused");
+    assert_eq!(e.code, furrow::ErrorCode::FieldTooComplex, "{e}");
+    assert!(e.message.contains("cells"), "{e}");
+    assert!(e.message.contains("boustrophedon"), "{e}");
+    // Auto plans without it, and says why.
+    let auto = PlanOptions {
+        decomposition: Decomposition::Auto,
+        ..options.clone()
+    };
+    let plan = plan_geojson(&text, &auto).expect("plans");
+    let d = &plan.summary.decomposition;
+    let methods: Vec<Decomposition> = d.candidates.iter().map(|c| c.method).collect();
+    assert_eq!(methods, [Decomposition::None, Decomposition::Boustrophedon]);
+    assert!(
+        d.reason.contains("split-merge was not tried"),
+        "{}",
+        d.reason
+    );
+    // A few obstacles are within its reach.
+    let few = obstacle_grid(3, 2);
+    let plan = plan_geojson(&few, &auto).expect("plans");
+    assert_eq!(plan.summary.decomposition.candidates.len(), 3);
+}
+
 #[test]
 fn estimated_time_counts_each_move_between_blocks_once() {
     use furrow::path::turn::CUSP_PENALTY_M;

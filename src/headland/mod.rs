@@ -20,6 +20,7 @@
 //! user set to 0 passes, see [`edges`]) the passes are open lines that end where the swaths
 //! along those edges begin.
 
+pub mod complexity;
 pub mod edges;
 pub mod offset;
 
