@@ -249,7 +249,8 @@ pub fn plan_route_on(
     let mut position = settings.entrance;
     let mut pass_steps = Vec::new();
     if settings.headland_order == HeadlandOrder::First {
-        position = append_headland_passes(&mut pass_steps, passes, position, true, not_island);
+        position =
+            append_headland_passes(&mut pass_steps, passes, graph, position, true, not_island);
     }
 
     let (names, block_ways) = cheapest_ways(swaths, blocks, settings);
@@ -305,10 +306,12 @@ pub fn plan_route_on(
     }
     match settings.headland_order {
         HeadlandOrder::Last => {
-            append_headland_passes(&mut steps, passes, position, false, |_| true);
+            append_headland_passes(&mut steps, passes, graph, position, false, |_| true);
         }
         HeadlandOrder::First => {
-            append_headland_passes(&mut steps, passes, position, false, |p| !not_island(p));
+            append_headland_passes(&mut steps, passes, graph, position, false, |p| {
+                !not_island(p)
+            });
         }
     }
 
@@ -511,7 +514,8 @@ pub fn block_sequence_problem(
     let graph = headland_graph(passes, settings);
     let mut position = settings.entrance;
     if settings.headland_order == HeadlandOrder::First {
-        position = append_headland_passes(&mut Vec::new(), passes, position, true, not_island);
+        position =
+            append_headland_passes(&mut Vec::new(), passes, &graph, position, true, not_island);
     }
     let (_, block_ways) = cheapest_ways(swaths, blocks, settings);
     let unlimited: Vec<usize> = if position.is_some() { vec![0] } else { vec![] };
@@ -695,11 +699,13 @@ fn not_island(p: &HeadlandPass) -> bool {
     p.around != PassAround::Obstacle
 }
 
-/// Appends the headland passes `which` selects, outermost or innermost first, each part nearest-first, and
-/// returns where the machine ends up.
+/// Appends the headland passes `which` selects, outermost or innermost first, each part
+/// nearest-first, and returns where the machine ends up. `graph` is the headland graph of
+/// `passes`, whose index of their segments finds the nearest passes.
 fn append_headland_passes(
     steps: &mut Vec<RouteStep>,
     passes: &[HeadlandPass],
+    graph: &HeadlandGraph,
     mut position: Option<Coord>,
     outermost_first: bool,
     which: impl Fn(&HeadlandPass) -> bool,
@@ -718,36 +724,125 @@ fn append_headland_passes(
         while end < order.len() && passes[order[end]].index == index {
             end += 1;
         }
-        let mut group: Vec<usize> = order[k..end].to_vec();
-        while !group.is_empty() {
-            // (distance, position in group, reversed, where the pass ends)
-            let mut best: Option<(f64, usize, bool, Option<Coord>)> = None;
-            for (g, &i) in group.iter().enumerate() {
-                let p = &passes[i];
-                let options = if p.closed {
-                    let (d, q) = nearest_on_ring(&p.line, position);
-                    vec![(d, false, q)]
-                } else {
-                    let (Some(&first), Some(&last)) = (p.line.0.first(), p.line.0.last()) else {
-                        continue;
-                    };
-                    let d = |q: Coord| position.map_or(0.0, |p| distance(p, q));
-                    vec![(d(first), false, Some(last)), (d(last), true, Some(first))]
-                };
-                for (d, reversed, end) in options {
-                    if best.is_none_or(|(bd, ..)| d < bd) {
-                        best = Some((d, g, reversed, end));
-                    }
-                }
-            }
-            let (g, reversed, end) = best.map_or((0, false, None), |(_, g, r, e)| (g, r, e));
-            let pass = group.remove(g);
+        let mut group = NearestFirst::new(&order[k..end], passes);
+        while let Some((pass, reversed, end)) = group.next_from(position, graph) {
             steps.push(RouteStep::HeadlandPass { pass, reversed });
             position = end.or(position);
         }
         k = end;
     }
     position
+}
+
+/// The passes of one group (the same index) taken nearest-first: the next is the one of least
+/// distance from the machine, the first in the group's order among equals (a closed pass by its
+/// nearest point, an open one by its nearer end, that one first among equals).
+struct NearestFirst<'a> {
+    passes: &'a [HeadlandPass],
+    /// The group's passes, in its order.
+    members: &'a [usize],
+    /// Each pass's place in the group, if it is in it.
+    place: Vec<Option<usize>>,
+    taken: Vec<bool>,
+    left: usize,
+    /// The pick at which each member was last looked at (so each is costed once a pick).
+    seen: Vec<usize>,
+    pick: usize,
+    /// Members the graph does not hold (fewer than two points): looked at every pick.
+    unindexed: Vec<usize>,
+}
+
+/// A candidate: its distance, place in the group and option, and the step it makes.
+type Candidate = (f64, usize, usize, bool, Option<Coord>);
+
+impl<'a> NearestFirst<'a> {
+    fn new(members: &'a [usize], passes: &'a [HeadlandPass]) -> Self {
+        let mut place = vec![None; passes.len()];
+        for (g, &i) in members.iter().enumerate() {
+            place[i] = Some(g);
+        }
+        let unindexed = (0..members.len())
+            .filter(|&g| passes[members[g]].line.0.len() < 2)
+            .collect();
+        NearestFirst {
+            passes,
+            members,
+            place,
+            taken: vec![false; members.len()],
+            left: members.len(),
+            seen: vec![usize::MAX; members.len()],
+            pick: 0,
+            unindexed,
+        }
+    }
+
+    /// The ways to enter member `g` from `position`: (distance, reversed, where it ends).
+    fn options(&self, g: usize, position: Option<Coord>) -> Vec<(f64, bool, Option<Coord>)> {
+        let p = &self.passes[self.members[g]];
+        if p.closed {
+            let (d, q) = nearest_on_ring(&p.line, position);
+            vec![(d, false, q)]
+        } else {
+            let (Some(&first), Some(&last)) = (p.line.0.first(), p.line.0.last()) else {
+                return Vec::new();
+            };
+            let d = |q: Coord| position.map_or(0.0, |p| distance(p, q));
+            vec![(d(first), false, Some(last)), (d(last), true, Some(first))]
+        }
+    }
+
+    /// Weighs member `g` against the best so far.
+    fn weigh(&mut self, g: usize, position: Option<Coord>, best: &mut Option<Candidate>) {
+        if self.taken[g] || self.seen[g] == self.pick {
+            return;
+        }
+        self.seen[g] = self.pick;
+        for (k, (d, reversed, end)) in self.options(g, position).into_iter().enumerate() {
+            let better = best.is_none_or(|(bd, bg, bk, ..)| d < bd || d == bd && (g, k) < (bg, bk));
+            if better {
+                *best = Some((d, g, k, reversed, end));
+            }
+        }
+    }
+
+    /// The next pass from `position`: (pass, reversed, where it ends); `None` once all are taken.
+    fn next_from(
+        &mut self,
+        position: Option<Coord>,
+        graph: &HeadlandGraph,
+    ) -> Option<(usize, bool, Option<Coord>)> {
+        if self.left == 0 {
+            return None;
+        }
+        self.pick += 1;
+        let mut best: Option<Candidate> = None;
+        for u in 0..self.unindexed.len() {
+            self.weigh(self.unindexed[u], position, &mut best);
+        }
+        if let Some(p) = position {
+            // Segments nearest first: once they are farther than the best pass (beyond rounding),
+            // no pass nearer or as near is left unseen.
+            for (pass, d) in graph.passes_by_distance(p) {
+                if best.is_some_and(|(bd, ..)| d > bd + 1e-9 * bd.max(1.0)) {
+                    break;
+                }
+                if let Some(g) = self.place.get(pass).copied().flatten() {
+                    self.weigh(g, position, &mut best);
+                }
+            }
+        }
+        if best.is_none_or(|(d, ..)| d.is_nan()) || position.is_none() {
+            // Without a position every pass is as near; and a graph of other passes than these
+            // would leave some unseen: every pass is weighed.
+            for g in 0..self.members.len() {
+                self.weigh(g, position, &mut best);
+            }
+        }
+        let (_, g, _, reversed, end) = best?;
+        self.taken[g] = true;
+        self.left -= 1;
+        Some((self.members[g], reversed, end))
+    }
 }
 
 /// Distance to and the nearest point of a ring from a position (0 and `None` without one).
