@@ -456,6 +456,26 @@ pub fn search_region(
     inset_coarse(&region, headland_depth, width / 20.0)
 }
 
+/// The vertices of the outlines the direction search sweeps ([`search_region`]): the boundary's
+/// rings and the obstacles at least `obstacle_threshold` across.
+pub fn search_vertices(field: &Field, obstacle_threshold: f64) -> usize {
+    let boundary: usize = std::iter::once(field.boundary.exterior())
+        .chain(field.boundary.interiors())
+        .map(|r| r.0.len())
+        .sum();
+    let obstacles: usize = field
+        .obstacles
+        .iter()
+        .filter(|o| {
+            o.polygon
+                .bounding_rect()
+                .is_some_and(|r| r.width().planar_hypot(r.height()) >= obstacle_threshold)
+        })
+        .map(|o| o.polygon.exterior().0.len())
+        .sum();
+    boundary + obstacles
+}
+
 /// What the direction search of an area needs besides the area.
 pub struct AreaSearch<'a> {
     /// Search method.

@@ -504,3 +504,48 @@ fn too_many_swath_lines_to_search_follow_the_longest_edge() {
     .expect("plans");
     assert_eq!(wide.summary.direction.mode, DirectionMode::Search);
 }
+
+#[test]
+fn outlines_of_too_many_vertices_to_search_follow_the_longest_edge() {
+    // 600 m x 300 m at 6 m: 112 lines; and 300 ponds of 24 vertices each, 7,200 vertices the
+    // sweep of each direction sorts, over the budget.
+    let pond = |cx: f64, cy: f64| {
+        let ring: Vec<String> = (0..=24)
+            .map(|k| {
+                let t = (k % 24) as f64 / 24.0 * std::f64::consts::TAU;
+                format!("[{},{}]", cx + 4.0 * t.cos(), cy - 4.0 * t.sin())
+            })
+            .collect();
+        format!(
+            r#"{{"type":"Feature","properties":{{"role":"obstacle"}},"geometry":{{"type":"Polygon","coordinates":[[{}]]}}}}"#,
+            ring.join(",")
+        )
+    };
+    let field = r#"{"type":"Feature","properties":{"role":"boundary"},"geometry":{"type":"Polygon","coordinates":[[[0,0],[600,0],[600,300],[0,300],[0,0]]]}}"#;
+    let with_ponds = |n: usize| {
+        let mut features = vec![field.to_string()];
+        features.extend(
+            (0..n).map(|i| pond(15.0 + 30.0 * (i % 20) as f64, 15.0 + 20.0 * (i / 20) as f64)),
+        );
+        format!(
+            r#"{{"type":"FeatureCollection","features":[{}]}}"#,
+            features.join(",")
+        )
+    };
+    let options = PlanOptions {
+        headland_passes: 0,
+        coordinates: furrow::field::Coordinates::Metric,
+        ..PlanOptions::default()
+    };
+    let plan = plan_geojson(&with_ponds(300), &options).expect("plans");
+    assert_eq!(plan.summary.direction.mode, DirectionMode::LongestEdge);
+    let w = plan
+        .warnings
+        .iter()
+        .find(|w| w.code == furrow::WarningCode::DirectionNotSearched)
+        .expect("direction_not_searched");
+    assert!(w.message.contains("vertices"), "{}", w.message);
+    // With 30 ponds the same field is searched.
+    let few = plan_geojson(&with_ponds(30), &options).expect("plans");
+    assert_eq!(few.summary.direction.mode, DirectionMode::Search);
+}

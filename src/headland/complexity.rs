@@ -18,18 +18,21 @@
 //! exact test of each pair whose boxes meet, and stops at a cap, so it costs at most a few
 //! tens of milliseconds however complex the outline.
 
+use super::offset::round_step;
 use crate::error::{ErrorCode, PlanError};
 use crate::geometry::IndexedSegment;
 use geo::{Coord, Polygon};
 use rstar::{RTree, AABB};
 
 /// The most offset work planning takes on: each inset of the headland stage (one per pass, and
-/// one for the inner field) counts the region's edges and the pairs of its sections that overlap
-/// at the deepest inset. Measured natively, an inset of about 200,000 overlapping pairs took
-/// 1.2 s and 150 MB, one of 1.4 million 6.5 s and 580 MB, one of 16 million ten minutes and
-/// 11.5 GB; at this budget the insets of a plan take at most a few seconds and a few hundred MB.
-/// (The corpus needs at most a few thousand.)
-pub const MAX_OFFSET_WORK: usize = 600_000;
+/// one for the inner field) counts the region's edges, the points of its round joins and the
+/// pairs of its sections that overlap, at the deepest inset. Measured natively: an inset of a
+/// noisy 20,000-point outline by 8 m (20,000 edges, 192,000 overlapping pairs) took 1.2 s and
+/// 150 MB, one of 1.4 million pairs 6.5 s and 580 MB, one of 16 million ten minutes and 11.5 GB;
+/// the three insets of a field with 2,000 square obstacles (8,000 edges, 336,000 join points,
+/// 1.04 million in all) 1.4 s. At this budget the insets of a plan take two seconds or so and a
+/// few hundred MB. The corpus needs at most 9,300.
+pub const MAX_OFFSET_WORK: usize = 1_500_000;
 
 /// The count of [`overlapping_sections`], and whether it stopped at a cap before the end.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -213,11 +216,62 @@ pub fn overlapping_sections(
     }
 }
 
+/// The points of the round joins an inset of the region by `distance` adds: where a ring turns
+/// away from the region (a reflex corner of the field, any corner of an obstacle) the sections
+/// of its two edges part, and an arc of the turning angle, in chords of
+/// [`round_step`]`(distance)`, fills the gap.
+///
+/// ```
+/// use furrow::headland::complexity::join_points;
+/// use furrow::headland::offset::round_step;
+/// use geo::polygon;
+///
+/// // A square field has no reflex corner; a square obstacle turns a full circle of them.
+/// let field = polygon![(x: 0., y: 0.), (x: 100., y: 0.), (x: 100., y: 100.), (x: 0., y: 100.)];
+/// let pond = polygon![(x: 40., y: 40.), (x: 50., y: 40.), (x: 50., y: 50.), (x: 40., y: 50.)];
+/// assert_eq!(join_points(&field, &[], 10.0), 0);
+/// let quarter = (std::f64::consts::FRAC_PI_2 / round_step(10.0)).ceil() as usize;
+/// assert_eq!(join_points(&field, &[&pond], 10.0), 4 * quarter);
+/// ```
+pub fn join_points(boundary: &Polygon, holes: &[&Polygon], distance: f64) -> usize {
+    let step = round_step(distance);
+    let rings = std::iter::once((boundary.exterior(), false))
+        .chain(holes.iter().map(|h| (h.exterior(), true)));
+    let mut points = 0;
+    for (line, hole) in rings {
+        let pts = line.0.get(..line.0.len().saturating_sub(1)).unwrap_or(&[]);
+        let n = pts.len();
+        let twice_area: f64 = line
+            .0
+            .windows(2)
+            .map(|w| w[0].x * w[1].y - w[1].x * w[0].y)
+            .sum();
+        // The region lies left of each edge where this is positive.
+        let side = if (twice_area > 0.0) != hole {
+            1.0
+        } else {
+            -1.0
+        };
+        for i in 0..n {
+            let (a, v, b) = (pts[(i + n - 1) % n], pts[i], pts[(i + 1) % n]);
+            let (d1, d2) = (v - a, b - v);
+            let cross = d1.x * d2.y - d1.y * d2.x;
+            if cross * side < 0.0 {
+                let turn = cross.abs().atan2(d1.x * d2.x + d1.y * d2.y);
+                points += (turn / step).ceil() as usize;
+            }
+        }
+    }
+    points
+}
+
 /// Refuses, with [`ErrorCode::FieldTooComplex`], a region whose headland insets would cost more
 /// than [`MAX_OFFSET_WORK`]: `passes` passes (the most along any edge or round any obstacle) of
-/// `width` rounded to `turn_radius`, the deepest inset `(passes - 1/2) x width + turn_radius`
-/// (or the inner field's `passes x width`). `holes` are the obstacles (all of them: which get
-/// headlands is decided later).
+/// `width` rounded to `turn_radius`, `passes + 1` insets (one a pass, and the inner field's),
+/// each counted at the deepest, `(passes - 1/2) x width + turn_radius` (or `passes x width`):
+/// its edges, its joins' points ([`join_points`]) and its overlapping sections
+/// ([`overlapping_sections`]). `holes` are the obstacles that may get headlands (which do is
+/// decided later).
 ///
 /// ```
 /// use furrow::headland::complexity::check_offsets;
@@ -256,18 +310,33 @@ pub fn check_offsets(
         .chain(holes.iter().copied())
         .map(|p| p.exterior().0.len().saturating_sub(1))
         .sum();
-    // The overlapping pairs each inset may have besides its edges.
-    let allowed = (MAX_OFFSET_WORK / insets).saturating_sub(edges);
-    let overlaps = overlapping_sections(boundary, holes, deepest, allowed);
-    if edges.saturating_mul(insets) <= MAX_OFFSET_WORK && !overlaps.stopped {
+    let joins = join_points(boundary, holes, deepest);
+    let outline = edges.saturating_add(joins);
+    // The overlapping pairs each inset may have besides its edges and joins.
+    let allowed = (MAX_OFFSET_WORK / insets).saturating_sub(outline);
+    let overlaps = if outline.saturating_mul(insets) <= MAX_OFFSET_WORK {
+        overlapping_sections(boundary, holes, deepest, allowed)
+    } else {
+        SectionOverlaps {
+            pairs: 0,
+            stopped: true,
+        }
+    };
+    if !overlaps.stopped {
         return Ok(());
     }
+    let crossing = if overlaps.pairs > 0 {
+        format!(
+            ", overlapping each other more than {} times",
+            overlaps.pairs.min(allowed)
+        )
+    } else {
+        String::new()
+    };
     Err(PlanError::new(
         ErrorCode::FieldTooComplex,
         format!(
-            "the outline is too detailed to offset for headland passes at {width} m: its {edges} edges, inset by up to {deepest:.1} m in {insets} insets, overlap {}{} times, and the planner takes on up to {MAX_OFFSET_WORK} edges and overlaps over all insets; simplify the outline, or use a wider working width, fewer headland passes or a smaller turning radius",
-            if overlaps.stopped { "more than " } else { "" },
-            overlaps.pairs.min(allowed),
+            "the outlines are too detailed for headland passes at {width} m: their {edges} edges and {joins} points of rounded corners, inset by up to {deepest:.1} m{crossing}, {insets} times over, are more than the planner takes on ({MAX_OFFSET_WORK} in all); simplify the outlines or use fewer obstacles, or a wider working width, fewer headland passes or a smaller turning radius"
         ),
     ))
 }
@@ -384,8 +453,9 @@ mod tests {
         // ... and one as the planner simplifies it at a 6 m width (within 1 m: a point every
         // 40 m, here every 6) at any depth up to its middle...
         assert!(check_offsets(&disc(200), &[], 6.0, 10, 8.0).is_ok());
-        // ... but each pass is an inset of every edge: beyond the budget, too many passes.
-        assert!(check_offsets(&disc(20_000), &[], 6.0, 40, 8.0).is_err());
+        // ... but each pass is an inset of every edge: 80 insets of 20,000 edges spend the
+        // budget.
+        assert!(check_offsets(&disc(20_000), &[], 0.1, 79, 0.0).is_err());
         // The concave bays of a smooth star, as densely drawn, turn tighter than 65 m: the
         // sections of each bay cross by the hundred thousand.
         let star = noisy_star(20_000, 200.0, 0.0, 7);
