@@ -530,7 +530,8 @@ export type WarningCode =
   | "region_own_direction"
   | "region_not_worked"
   | "direction_not_searched"
-  | "turn_leaves_field";
+  | "turn_leaves_field"
+  | "output_coarsened";
 
 export interface PlanWarning {
   /** What the warning is about; see the README's warning reference. */

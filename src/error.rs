@@ -282,6 +282,9 @@ pub enum WarningCode {
     /// The field has too many swaths at this width to search every direction while the user
     /// waits: the swaths run along the longest edge.
     DirectionNotSearched,
+    /// The plan is too large to output at full detail: its lines are drawn with coarser chords,
+    /// or its path sampled farther apart than asked.
+    OutputCoarsened,
 }
 
 impl WarningCode {
@@ -305,6 +308,7 @@ impl WarningCode {
         WarningCode::RegionNotWorked,
         WarningCode::DirectionNotSearched,
         WarningCode::TurnLeavesField,
+        WarningCode::OutputCoarsened,
     ];
 
     /// The code as it appears in JSON.
@@ -328,6 +332,7 @@ impl WarningCode {
             WarningCode::RegionNotWorked => "region_not_worked",
             WarningCode::DirectionNotSearched => "direction_not_searched",
             WarningCode::TurnLeavesField => "turn_leaves_field",
+            WarningCode::OutputCoarsened => "output_coarsened",
         }
     }
 }

@@ -23,6 +23,7 @@
 //! the one before it ends. Blocks, obstacles, obstacle groups and the parts left uncovered come first. The collection has two more members:
 //! `summary` ([`Summary`]) and `warnings` (a list of `{code, message, feature?}`).
 
+pub mod budget;
 pub mod json;
 
 use crate::error::Warning;
@@ -33,7 +34,7 @@ use crate::metrics::Summary;
 use crate::obstacles::ObstacleClass;
 use crate::path::curve::Gear;
 use crate::path::sample::compass_deg;
-use crate::path::turn::chord_poses;
+use crate::path::turn::chord_poses_within;
 use crate::path::{PathSegment, SegmentKind};
 use crate::plan::Plan;
 use crate::route::RouteStep;
@@ -260,6 +261,8 @@ impl Plan {
         // path, as each segment starts where the one before ends. (The field's own outlines
         // keep the exact projection of every vertex.)
         let mut along = OutputAlong::new(&self.field.frame);
+        // Chords within 5 mm of the curves, unless that makes too many points.
+        let tolerance = budget::chord_tolerance(&self.path);
         for (sequence, seg) in self.path.segments.iter().enumerate() {
             let length = seg.length();
             let speed = if seg.is_working() {
@@ -268,7 +271,7 @@ impl Plan {
                 vehicle.turning_speed
             };
             let duration = if speed > 0.0 { length / speed } else { 0.0 };
-            let (points, heading, curvature, reverse) = vertices(seg);
+            let (points, heading, curvature, reverse) = vertices(seg, tolerance);
             let mut p = Properties {
                 kind: seg.kind.as_str(),
                 sequence: Some(sequence),
@@ -384,13 +387,13 @@ impl Plan {
     }
 }
 
-/// The points of a drivable segment's line (its pieces at chords within 5 mm) with the heading
-/// (compass degrees), curvature and gear at each.
-fn vertices(seg: &PathSegment) -> (Vec<Coord>, Vec<f64>, Vec<f64>, Vec<bool>) {
+/// The points of a drivable segment's line (its pieces at chords within `tolerance` metres,
+/// [`budget::chord_tolerance`]) with the heading (compass degrees), curvature and gear at each.
+fn vertices(seg: &PathSegment, tolerance: f64) -> (Vec<Coord>, Vec<f64>, Vec<f64>, Vec<bool>) {
     let (mut pts, mut heading, mut curvature, mut reverse) =
         (Vec::new(), Vec::new(), Vec::new(), Vec::new());
     for (i, piece) in seg.pieces.iter().enumerate() {
-        for (j, (pose, k)) in chord_poses(piece).enumerate() {
+        for (j, (pose, k)) in chord_poses_within(piece, tolerance).enumerate() {
             if i > 0 && j == 0 {
                 continue;
             }

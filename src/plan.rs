@@ -32,6 +32,7 @@ use crate::metrics::{
 use crate::objective::{measure_all, Machine, Objective, ObjectiveValues};
 use crate::obstacles::{classify, ClassSettings, ObstacleClass, ObstacleClasses};
 use crate::options::PlanOptions;
+use crate::output::budget::{coarsened, sample_spacing};
 use crate::path::sample::{sample, Samples};
 use crate::path::turn::Area as DrivingArea;
 use crate::path::{build_path, Path};
@@ -101,14 +102,14 @@ pub struct Plan {
 }
 
 impl Plan {
-    /// The path sampled every `options.sample_spacing` metres or less ([`sample`]), positions
-    /// in the input's coordinates (longitude and latitude, or local metres).
+    /// The path sampled every `options.sample_spacing` metres or less ([`sample`]), or, on a
+    /// path so long that it would have more samples than
+    /// [`MAX_SAMPLES`](crate::output::budget::MAX_SAMPLES), as closely as that
+    /// allows ([`sample_spacing`]); positions in the input's coordinates (longitude and
+    /// latitude, or local metres).
     pub fn samples(&self) -> Samples {
-        let mut s = sample(
-            &self.path,
-            self.options.sample_spacing,
-            &self.options.vehicle(),
-        );
+        let spacing = sample_spacing(&self.path, self.options.sample_spacing);
+        let mut s = sample(&self.path, spacing, &self.options.vehicle());
         // The projection is smooth: exact every few hundred metres, quadratic in between
         // (within 0.3 mm of the exact conversion).
         let mut along = OutputAlong::new(&self.field.frame);
@@ -458,7 +459,19 @@ pub(crate) fn plan_stages(
         }
     }
     let figures: Vec<DecompositionCandidate> = candidates.iter().map(Worked::figures).collect();
-    let chosen = candidates.swap_remove(best);
+    let shared = candidates[best]
+        .shares_path
+        .then(|| {
+            let none = candidates
+                .iter()
+                .position(|c| c.method == Decomposition::None)?;
+            Some(std::mem::take(&mut candidates[none].path))
+        })
+        .flatten();
+    let mut chosen = candidates.swap_remove(best);
+    if let Some(path) = shared {
+        chosen.path = path;
+    }
     let mut reason = if figures.len() == 1 {
         format!("{} as asked", chosen.method.as_str())
     } else {
@@ -496,6 +509,7 @@ pub(crate) fn plan_stages(
     times.lap(&mut clock, |t| &mut t.metrics);
     summary.stages_ms = times;
     warnings.extend(own_warnings);
+    warnings.extend(coarsened(&path, options.sample_spacing));
     Ok(Plan {
         field,
         options: options.clone(),
@@ -533,7 +547,10 @@ struct Worked {
     swaths: Swaths,
     blocks: Blocks,
     route: Route,
+    /// The path; empty where it is that of the `none` candidate (`shares_path`), which is taken
+    /// from it if this one is chosen (a plan of 100,000 swaths has 200 MB of path).
     path: Path,
+    shares_path: bool,
     summary: Summary,
     warnings: Vec<Warning>,
     decomposition_evaluations: usize,
@@ -1075,18 +1092,28 @@ fn work(
             ),
         ));
     }
-    let path = match earlier {
-        Some((_, path)) => path.clone(),
-        None => build_path(
+    let built = match &earlier {
+        Some(_) => None,
+        None => Some(build_path(
             &route,
             &swaths,
             &headlands.passes,
             &options.vehicle(),
             Some(&prep.area),
-        ),
+        )),
+    };
+    let path: &Path = match (&built, &earlier) {
+        (Some(path), _) => path,
+        (None, Some((_, path))) => path,
+        (None, None) => {
+            return Err(PlanError::new(
+                ErrorCode::Internal,
+                "a candidate without its path",
+            ))
+        }
     };
     times.lap(&mut clock, |t| &mut t.path);
-    if let Some(w) = turns_leaving(&path, options) {
+    if let Some(w) = turns_leaving(path, options) {
         warnings.push(w);
     }
     let machine = options.machine();
@@ -1106,7 +1133,7 @@ fn work(
         &swaths,
         &blocks,
         &route,
-        &path,
+        path,
         &DirectionFigures {
             direction,
             objectives: ObjectiveValues::of(&stats, &machine),
@@ -1114,13 +1141,15 @@ fn work(
         },
     );
     times.lap(&mut clock, |t| &mut t.metrics);
+    let shares_path = built.is_none();
     Ok(Worked {
         method,
         headlands,
         swaths,
         blocks,
         route,
-        path,
+        path: built.unwrap_or_default(),
+        shares_path,
         summary,
         warnings,
         decomposition_evaluations,

@@ -393,7 +393,7 @@ pub struct Area {
 type Edge = IndexedSegment;
 
 /// Chords of a sampled curve are at most this far off it, metres.
-const CHORD_TOLERANCE_M: f64 = 0.005;
+pub const CHORD_TOLERANCE_M: f64 = 0.005;
 
 impl Area {
     /// The area inside `boundary` (with its holes) and outside `obstacles`.
@@ -554,7 +554,12 @@ pub fn chord_points(s: &Segment) -> impl Iterator<Item = Coord> + '_ {
 
 /// The poses (with the steering curvature there) at [`chord_points`].
 pub fn chord_poses(s: &Segment) -> impl Iterator<Item = (Pose, f64)> + '_ {
-    let n = chord_count(s);
+    chord_poses_within(s, CHORD_TOLERANCE_M)
+}
+
+/// [`chord_poses`] with the chords within `tolerance` metres of the segment.
+pub fn chord_poses_within(s: &Segment, tolerance: f64) -> impl Iterator<Item = (Pose, f64)> + '_ {
+    let n = chords_within(s, tolerance);
     let poses = s.poses();
     let at = (0..=n).map(move |i| chord_distance(s, i, n));
     poses
@@ -565,9 +570,15 @@ pub fn chord_poses(s: &Segment) -> impl Iterator<Item = (Pose, f64)> + '_ {
 
 /// The number of chords [`chord_points`] divides a segment into.
 fn chord_count(s: &Segment) -> usize {
+    chords_within(s, CHORD_TOLERANCE_M)
+}
+
+/// The number of chords within `tolerance` metres of a segment (1 for a line): a chord of
+/// length `c` on a curve of curvature `k` falls `c² k / 8` short of it.
+pub fn chords_within(s: &Segment, tolerance: f64) -> usize {
     let k = s.max_curvature();
     let step = if k > 1e-12 {
-        (8.0 * CHORD_TOLERANCE_M / k).sqrt()
+        (8.0 * tolerance / k).sqrt()
     } else {
         f64::INFINITY
     };
