@@ -39,8 +39,10 @@ impl Sleeve {
     }
 }
 
-/// Vertices looked at beyond the last one that could end an edge before the edge is ended there:
-/// what keeps the work linear on a ring that winds about within its own sleeve.
+/// Vertices looked at beyond the last one that could end an edge before the edge is ended there
+/// (or, if more, twice as many as the edge already spans): what keeps the work linear on a ring
+/// that winds about within its own sleeve, while a noisy outline, whose next vertex that could
+/// end an edge comes ever farther on, still gets long edges along its inner side.
 const LOOKAHEAD: usize = 64;
 
 /// The vertices of an open ring (first point not repeated) that the sleeve keeps, in order.
@@ -156,8 +158,8 @@ impl Cone {
 }
 
 /// Where the edge from vertex `anchor` ends (an index up to `n`, which is vertex 0 again): the
-/// farthest vertex in the cone of the vertices before it and at least as far from the anchor as
-/// any of them.
+/// farthest vertex in the cone of the vertices before it, with every one of them between the
+/// anchor's foot and its own on the edge.
 fn edge_end(at: &impl Fn(usize) -> Coord, anchor: usize, n: usize, sleeve: Sleeve) -> usize {
     let a = at(anchor);
     let first = at(anchor + 1);
@@ -168,26 +170,81 @@ fn edge_end(at: &impl Fn(usize) -> Coord, anchor: usize, n: usize, sleeve: Sleev
         hi: f64::INFINITY,
     };
     let mut end = anchor + 1;
-    let mut farthest = 0.0f64;
+    let mut feet = Feet::default();
     let mut k = anchor + 1;
-    while k < n && k - end <= LOOKAHEAD {
+    while k < n && k - end <= LOOKAHEAD.max(2 * (end - anchor)) {
         // Vertex k lies between the anchor and any end beyond it.
         if !removable(at, k, sleeve) {
             break;
         }
         let (distance, angle) = cone.polar(a, at(k));
         cone.narrow(distance, angle, sleeve);
-        farthest = farthest.max(distance);
+        feet.push(at, anchor, k, distance);
         if cone.lo > cone.hi {
             break;
         }
-        let (reach, direction) = cone.polar(a, at(k + 1));
-        if cone.holds(direction) && reach >= farthest {
+        let candidate = at(k + 1);
+        let (reach, direction) = cone.polar(a, candidate);
+        if cone.holds(direction) && feet.within(at, anchor, k, candidate, reach) {
             end = k + 1;
         }
         k += 1;
     }
     end
+}
+
+/// The vertices between an anchor and a candidate end, for the test that each one's foot on the
+/// edge lies between the edge's ends: the last [`FEET_WINDOW`] exactly, by projection on the edge,
+/// and those before them by their distance from the anchor (no farther than the end), which
+/// keeps the test short. Along a noisy outline the vertices just before an end are those that
+/// may lie farther from the anchor than the end while their feet fall short of it.
+#[derive(Default)]
+struct Feet {
+    /// The greatest distance from the anchor of any vertex looked at.
+    farthest: f64,
+    /// The greatest distance from the anchor of the vertices before the window.
+    farthest_before_window: f64,
+}
+
+/// How many of the vertices just before a candidate end are tested by their feet.
+const FEET_WINDOW: usize = 64;
+
+impl Feet {
+    /// Counts vertex `k` (at `distance` from the anchor) in.
+    fn push(&mut self, at: &impl Fn(usize) -> Coord, anchor: usize, k: usize, distance: f64) {
+        self.farthest = self.farthest.max(distance);
+        if k > anchor + FEET_WINDOW {
+            let leaving = at(k - FEET_WINDOW) - at(anchor);
+            let d = leaving.x.planar_hypot(leaving.y);
+            self.farthest_before_window = self.farthest_before_window.max(d);
+        }
+    }
+
+    /// Whether every vertex after the anchor up to `k` has its foot on the edge from the anchor
+    /// to `end` (at `reach`) no farther along than the end.
+    fn within(
+        &self,
+        at: &impl Fn(usize) -> Coord,
+        anchor: usize,
+        k: usize,
+        end: Coord,
+        reach: f64,
+    ) -> bool {
+        if reach >= self.farthest {
+            return true;
+        }
+        if reach < self.farthest_before_window {
+            return false;
+        }
+        let a = at(anchor);
+        let edge = end - a;
+        let length_squared = edge.x * edge.x + edge.y * edge.y;
+        let window = (k + 1).saturating_sub(FEET_WINDOW).max(anchor + 1);
+        (window..=k).all(|i| {
+            let v = at(i) - a;
+            v.x * edge.x + v.y * edge.y <= length_squared
+        })
+    }
 }
 
 #[cfg(test)]
@@ -269,6 +326,34 @@ mod tests {
             },
         );
         assert_eq!(outside_only.len(), ring.len());
+    }
+
+    #[test]
+    fn noise_wider_than_the_spacing_still_gives_long_edges_on_one_side() {
+        // A 100 m edge recorded every centimetre, every other point 40 cm outside it: the
+        // points outside lie farther from the edge's start than the next point on it, though
+        // their feet on the edge fall short of it.
+        let mut ring: Vec<Coord> = (0..10_000)
+            .map(|i| coord! { x: i as f64 * 0.01, y: if i % 2 == 1 { -0.4 } else { 0.0 } })
+            .collect();
+        ring.extend([
+            coord! { x: 100.0, y: 0.0 },
+            coord! { x: 100.0, y: 50.0 },
+            coord! { x: 0.0, y: 50.0 },
+        ]);
+        let kept = sleeve_ring(
+            &ring,
+            Sleeve {
+                left: 1e-3,
+                right: 0.5,
+                max_gap: f64::INFINITY,
+            },
+        );
+        assert!(kept.len() <= 8, "{} kept", kept.len());
+        assert!(
+            kept.iter().all(|p| p.y >= 0.0),
+            "only the points on the edge are kept"
+        );
     }
 
     #[test]
