@@ -22,7 +22,7 @@ use crate::geometry::{point_segment_distance, polygons_within, IndexedSegment, S
 use crate::headland::offset::drop_slivers;
 use crate::sort::SharedSort;
 use geo::{BooleanOps, BoundingRect, ConvexHull, Coord, MultiPolygon, Polygon};
-use rstar::{RTree, AABB};
+use rstar::{Envelope, RTree, RTreeObject, AABB};
 use serde::Serialize;
 use std::collections::BTreeSet;
 
@@ -221,13 +221,20 @@ fn close_groups(field: &Field, which: &[usize], width: f64) -> Vec<(Vec<usize>, 
             .filter_map(|(g, x)| x.as_ref().and_then(|(_, p)| boxed(g, p, 0)))
             .collect(),
     );
+    // Boxes of merged groups since the tree was built: looked through one by one, and put in the
+    // tree by building it anew once there are many (rstar's insertion would bring its own sorts
+    // of nodes into the WebAssembly module).
+    let mut added: Vec<IndexedSegment> = Vec::new();
     // The groups near a polygon (boxes within `width`, with a margin for rounding), in order.
     let near = |tree: &RTree<IndexedSegment>,
+                added: &[IndexedSegment],
                 groups: &[Option<(Vec<usize>, Polygon)>],
                 version: &[usize],
                 p: &Polygon| {
         let mut found: Vec<usize> = p.bounding_rect().map_or(Vec::new(), |r| {
-            tree.locate_in_envelope_intersecting(&grown_box(r, width * (1.0 + 1e-9) + 1e-9))
+            let envelope = grown_box(r, width * (1.0 + 1e-9) + 1e-9);
+            tree.locate_in_envelope_intersecting(&envelope)
+                .chain(added.iter().filter(|b| envelope.intersects(&b.envelope())))
                 .filter(|b| groups[b.line].is_some() && version[b.line] == b.index)
                 .map(|b| b.line)
                 .collect()
@@ -241,7 +248,7 @@ fn close_groups(field: &Field, which: &[usize], width: f64) -> Vec<(Vec<usize>, 
         let Some((_, polygon)) = &groups[a] else {
             continue;
         };
-        let partner = near(&tree, &groups, &version, polygon)
+        let partner = near(&tree, &added, &groups, &version, polygon)
             .into_iter()
             .filter(|&b| b > a)
             .find(|&b| {
@@ -270,11 +277,23 @@ fn close_groups(field: &Field, which: &[usize], width: f64) -> Vec<(Vec<usize>, 
         .convex_hull();
         version[a] += 1;
         if let Some(e) = boxed(a, &hull, version[a]) {
-            tree.insert(e);
+            added.push(e);
+        }
+        if added.len() > REBUILD_AFTER {
+            let current =
+                |b: &&IndexedSegment| groups[b.line].is_some() && version[b.line] == b.index;
+            let boxes = tree
+                .iter()
+                .filter(current)
+                .chain(added.iter().filter(current))
+                .copied()
+                .collect();
+            tree = RTree::bulk_load(boxes);
+            added.clear();
         }
         pending.insert(a);
         pending.extend(
-            near(&tree, &groups, &version, &hull)
+            near(&tree, &added, &groups, &version, &hull)
                 .into_iter()
                 .filter(|&c| c < a),
         );
@@ -284,6 +303,10 @@ fn close_groups(field: &Field, which: &[usize], width: f64) -> Vec<(Vec<usize>, 
     }
     groups.into_iter().flatten().collect()
 }
+
+/// How many merged groups' boxes are looked through one by one before the groups' R-tree is
+/// built anew.
+const REBUILD_AFTER: usize = 64;
 
 /// A box grown by `d` on every side, as the R-trees' envelope.
 fn grown_box(r: geo::Rect, d: f64) -> AABB<[f64; 2]> {
