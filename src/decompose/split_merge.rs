@@ -148,7 +148,7 @@ pub const MAX_VERTICES: usize = 10_000;
 /// use geo::{polygon, MultiPolygon};
 ///
 /// let field = polygon![(x: 0., y: 0.), (x: 300., y: 0.), (x: 300., y: 200.), (x: 0., y: 200.)];
-/// assert!(within_limits(&MultiPolygon::new(vec![field]), 0.0, 3.0).is_ok());
+/// assert!(within_limits(&MultiPolygon::new(vec![field.clone()]), 0.0, 3.0).is_ok());
 /// // 200 ponds in a row across the direction: 401 cells.
 /// let ponds: Vec<_> = (0..200)
 ///     .map(|i| {
