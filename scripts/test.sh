@@ -34,6 +34,8 @@ lints() {
 }
 step "lints" lints
 step "native tests" cargo test
+# Every worst-case input plans or is refused within 60 s and 4 GB (a hang check, in release).
+step "termination (release)" cargo test --release --test termination -- --ignored every_case_plans_or_is_refused_in_time
 step "wasm tests in Node" wasm_test
 step "wasm tests in Chromium" env WASM_BINDGEN_USE_BROWSER=1 bash -c "$(declare -f wasm_test); wasm_test"
 step "package build" scripts/build.sh
