@@ -268,13 +268,7 @@ fn close_groups(field: &Field, which: &[usize], width: f64) -> Vec<(Vec<usize>, 
         };
         members.extend(members_b);
         members.shared_sort_unstable_by(Ord::cmp);
-        let hull = MultiPolygon::new(
-            members
-                .iter()
-                .map(|&i| field.obstacles[i].polygon.clone())
-                .collect(),
-        )
-        .convex_hull();
+        let hull = hull_of(field, members);
         version[a] += 1;
         if let Some(e) = boxed(a, &hull, version[a]) {
             added.push(e);
@@ -302,6 +296,17 @@ fn close_groups(field: &Field, which: &[usize], width: f64) -> Vec<(Vec<usize>, 
         }
     }
     groups.into_iter().flatten().collect()
+}
+
+/// The convex hull of a group of obstacles.
+fn hull_of(field: &Field, members: &[usize]) -> Polygon {
+    MultiPolygon::new(
+        members
+            .iter()
+            .map(|&i| field.obstacles[i].polygon.clone())
+            .collect(),
+    )
+    .convex_hull()
 }
 
 /// How many merged groups' boxes are looked through one by one before the groups' R-tree is
@@ -389,14 +394,7 @@ mod tests {
                         let members = &mut groups[a].0;
                         members.extend(members_b);
                         members.sort_unstable();
-                        let hull = MultiPolygon::new(
-                            members
-                                .iter()
-                                .map(|&i| field.obstacles[i].polygon.clone())
-                                .collect(),
-                        )
-                        .convex_hull();
-                        groups[a].1 = hull;
+                        groups[a].1 = hull_of(field, members);
                         continue 'again;
                     }
                 }
@@ -411,10 +409,13 @@ mod tests {
         // Obstacles of 2 to 12 m, thin bars among them (whose hulls reach past their
         // neighbours), strewn over the field: groups of one, chains, and hulls that take in
         // obstacles none of their members was near.
-        let mut chains = 0;
+        // The last fields are crowded: more merges than the groups' R-tree takes before it is
+        // built anew.
+        let (mut chains, mut most_merges) = (0, 0);
         for seed in 0..20 {
             let mut rng = Rng::new(seed);
-            let obstacles: Vec<Polygon> = (0..60)
+            let count = if seed < 17 { 60 } else { 240 };
+            let obstacles: Vec<Polygon> = (0..count)
                 .map(|_| {
                     let (x, y) = (20.0 + 400.0 * rng.unit(), 20.0 + 400.0 * rng.unit());
                     let (w, h) = if rng.below(4) == 0 {
@@ -437,8 +438,13 @@ mod tests {
                 assert_eq!(gp, ep, "seed {seed}");
             }
             chains += usize::from(expected.iter().any(|(m, _)| m.len() > 2));
+            most_merges = most_merges.max(which.len() - got.len());
         }
         assert!(chains >= 10, "{chains} fields with groups of three or more");
+        assert!(
+            most_merges > REBUILD_AFTER,
+            "at most {most_merges} merges in a field"
+        );
     }
 
     #[test]

@@ -960,15 +960,8 @@ mod tests {
         }
     }
 
-    #[test]
-    fn every_swath_once_and_blocks_all_visited() {
-        let field = polygon!(
-            exterior: [(x: 0., y: 0.), (x: 60., y: 0.), (x: 60., y: 100.), (x: 0., y: 100.)],
-            interiors: [[(x: 20., y: 40.), (x: 40., y: 40.), (x: 40., y: 60.), (x: 20., y: 60.)]],
-        );
-        let swaths = generate(&MultiPolygon::new(vec![field]), 0.0, 6.0, 6.0).unwrap();
-        let blocks = cluster_swaths(&swaths);
-        let route = boustrophedon(&swaths, &blocks, &[], HeadlandOrder::Last, None);
+    /// Asserts that the route works each of `count` swaths exactly once.
+    fn assert_every_swath_once(route: &Route, count: usize) {
         let mut seen: Vec<usize> = route
             .steps
             .iter()
@@ -978,7 +971,19 @@ mod tests {
             })
             .collect();
         seen.sort_unstable();
-        assert_eq!(seen, (0..swaths.swaths.len()).collect::<Vec<_>>());
+        assert_eq!(seen, (0..count).collect::<Vec<_>>());
+    }
+
+    #[test]
+    fn every_swath_once_and_blocks_all_visited() {
+        let field = polygon!(
+            exterior: [(x: 0., y: 0.), (x: 60., y: 0.), (x: 60., y: 100.), (x: 0., y: 100.)],
+            interiors: [[(x: 20., y: 40.), (x: 40., y: 40.), (x: 40., y: 60.), (x: 20., y: 60.)]],
+        );
+        let swaths = generate(&MultiPolygon::new(vec![field]), 0.0, 6.0, 6.0).unwrap();
+        let blocks = cluster_swaths(&swaths);
+        let route = boustrophedon(&swaths, &blocks, &[], HeadlandOrder::Last, None);
+        assert_every_swath_once(&route, swaths.swaths.len());
         let mut order = route.block_order.clone();
         order.sort_unstable();
         assert_eq!(order, vec![0, 1, 2, 3]);
@@ -998,16 +1003,7 @@ mod tests {
         assert_eq!(blocks.blocks.len(), 300);
         let route = boustrophedon(&swaths, &blocks, &[], HeadlandOrder::Last, None);
         assert_eq!(route.sequence.method, SequenceMethod::NearestNeighbour);
-        let mut seen: Vec<usize> = route
-            .steps
-            .iter()
-            .filter_map(|s| match s {
-                RouteStep::Swath { swath, .. } => Some(*swath),
-                _ => None,
-            })
-            .collect();
-        seen.sort_unstable();
-        assert_eq!(seen, (0..swaths.swaths.len()).collect::<Vec<_>>());
+        assert_every_swath_once(&route, swaths.swaths.len());
         // Each block's two swaths one after the other, the second driven back.
         for pair in route.steps.chunks(2) {
             match pair {
