@@ -357,6 +357,30 @@ mod tests {
     }
 
     #[test]
+    fn an_edge_reaches_past_long_runs_of_vertices_that_cannot_end_it() {
+        // A 100 m edge recorded every centimetre, only every hundredth point on it and the
+        // others 30 cm outside: each point that can end the edge comes 100 vertices after the
+        // last, more than the fixed lookahead.
+        let mut ring: Vec<Coord> = (0..10_000)
+            .map(|i| coord! { x: i as f64 * 0.01, y: if i % 100 == 0 { 0.0 } else { -0.3 } })
+            .collect();
+        ring.extend([
+            coord! { x: 100.0, y: 0.0 },
+            coord! { x: 100.0, y: 50.0 },
+            coord! { x: 0.0, y: 50.0 },
+        ]);
+        let kept = sleeve_ring(
+            &ring,
+            Sleeve {
+                left: 1e-3,
+                right: 0.5,
+                max_gap: f64::INFINITY,
+            },
+        );
+        assert!(kept.len() <= 8, "{} kept", kept.len());
+    }
+
+    #[test]
     fn only_vertices_near_both_neighbours_are_removed() {
         // 3.14 m apart: none goes when only vertices nearer than 3 m to their neighbours may.
         let ring = circle(100, 50.0, 0);
