@@ -1,6 +1,7 @@
-// Types of the furrow package: the planner's types and functions from the wasm-bindgen module,
-// re-exported by furrow.js, which adds loading in Node, the FurrowError class and recovery from
-// a trapped instance. Every type the API uses is exported here.
+// Types of the furrow package's main entry: the planner's types and functions from the
+// wasm-bindgen module, re-exported by furrow.js, which adds loading in Node, the FurrowError
+// class and recovery from a trapped instance. Every type the API uses is exported here; the
+// shortest paths along a plan's tracks are the "furrow/tracks" entry (tracks.d.ts).
 import type { FurrowErrorDetails, InitInput, InitOutput, SyncInitInput } from "./furrow_wasm.js";
 
 export type {
@@ -35,14 +36,11 @@ export type {
   PathSamples,
   ErrorCode,
   FurrowErrorDetails,
-  Turning,
-  TrackPathOptions,
-  TrackPathFeature,
   InitInput,
   InitOutput,
   SyncInitInput,
 } from "./furrow_wasm.js";
-export { plan, defaultOptions, version, shortestPath, TrackGraph } from "./furrow_wasm.js";
+export { plan, defaultOptions, version } from "./furrow_wasm.js";
 
 /**
  * What every function of the package throws: an Error with a stable `code` (see `ErrorCode`)

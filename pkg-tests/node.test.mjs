@@ -15,6 +15,8 @@ if (!existsSync(new URL("furrow.js", pkgUrl))) {
 }
 const furrow = await import(new URL("furrow.js", pkgUrl));
 furrow.initSync({ module: readFileSync(new URL("furrow_wasm_bg.wasm", pkgUrl)) });
+const tracksEntry = await import(new URL("tracks.js", pkgUrl));
+tracksEntry.initSync({ module: readFileSync(new URL("furrow_tracks_wasm_bg.wasm", pkgUrl)) });
 
 const readField = (name) => JSON.parse(readFileSync(new URL(name, fieldsUrl), "utf8"));
 
@@ -56,25 +58,44 @@ test("package.json describes the package", () => {
   if (repository) assert.equal(pkg.repository.url, `git+${repository}.git`);
 });
 
+/** The names an entry's .d.ts exports (re-exported lists and its own declarations). */
+function exportedNames(entry) {
+  return new Set([
+    ...[...entry.matchAll(/^export (?:type )?\{([^}]*)\}/gm)].flatMap((m) => m[1].split(",").map((n) => n.trim())),
+    ...[...entry.matchAll(/^export (?:declare )?(?:interface|type|class|function) (\w+)/gm)].map((m) => m[1]),
+  ]);
+}
+
+/** The API's names in a wasm-bindgen module's .d.ts (its own __wbg functions aside). */
+function moduleNames(dts) {
+  return [...dts.matchAll(/^export (?:interface|type|class|function) (\w+)/gm)]
+    .map((m) => m[1])
+    .filter((name) => !name.startsWith("__wbg"));
+}
+
 test("TypeScript definitions declare the API and export every type", () => {
   const entry = readFileSync(new URL("furrow.d.ts", pkgUrl), "utf8");
-  for (const name of ["plan", "defaultOptions", "version", "initSync", "default", "Plan", "PlanOptions", "FurrowError", "TrackGraph", "shortestPath", "TrackPathFeature", "Turning"]) {
+  for (const name of ["plan", "defaultOptions", "version", "initSync", "default", "Plan", "PlanOptions", "FurrowError"]) {
     assert.match(entry, new RegExp(`\\b${name}\\b`), `furrow.d.ts re-exports ${name}`);
   }
   assert.match(entry, /export declare class FurrowError extends Error/);
   const dts = readFileSync(new URL("furrow_wasm.d.ts", pkgUrl), "utf8");
   assert.match(dts, /export function plan\(field: FieldInput, options\?: PlanOptions\): Plan;/);
-  // Every type, class and function of the wasm module's API is exported by the package's entry
-  // (wasm-bindgen's own __wbg functions aside).
-  const names = [...dts.matchAll(/^export (?:interface|type|class|function) (\w+)/gm)]
-    .map((m) => m[1])
-    .filter((name) => !name.startsWith("__wbg"));
+  // Every type, class and function of each wasm module's API is exported by its entry.
+  const names = moduleNames(dts);
   assert.ok(names.length > 30, names.join());
-  const exported = new Set([
-    ...[...entry.matchAll(/^export (?:type )?\{([^}]*)\}/gm)].flatMap((m) => m[1].split(",").map((n) => n.trim())),
-    ...[...entry.matchAll(/^export (?:declare )?(?:interface|type|class|function) (\w+)/gm)].map((m) => m[1]),
-  ]);
+  const exported = exportedNames(entry);
   for (const name of names) assert.ok(exported.has(name), `furrow.d.ts exports ${name}`);
+  const tracksEntry = readFileSync(new URL("tracks.d.ts", pkgUrl), "utf8");
+  const tracksNames = moduleNames(readFileSync(new URL("furrow_tracks_wasm.d.ts", pkgUrl), "utf8"));
+  for (const name of ["TrackGraph", "shortestPath", "TrackPathFeature", "TrackPathOptions", "Turning"]) {
+    assert.ok(tracksNames.includes(name), `furrow_tracks_wasm.d.ts declares ${name}`);
+  }
+  const tracksExported = exportedNames(tracksEntry);
+  for (const name of [...tracksNames, "initSync", "FurrowError"]) {
+    assert.ok(tracksExported.has(name), `tracks.d.ts exports ${name}`);
+  }
+  assert.match(tracksEntry, /^export default function initTracks\(/m);
   assert.doesNotMatch(entry + readFileSync(new URL("furrow.js", pkgUrl), "utf8"), /__panic|ForTests/);
   // Every option the planner knows is typed.
   for (const key of Object.keys(furrow.defaultOptions())) {
@@ -224,10 +245,13 @@ test("a trap inside the planner is reported and the planner recovers", () => {
   for (let i = 0; i < 20; i++) furrow.plan(field);
 });
 
-test("shortest paths along the tracks: TrackGraph and shortestPath", () => {
+test("shortest paths along the tracks: TrackGraph and shortestPath of furrow/tracks", () => {
   const field = readField("large-250ha-10-obstacles.geojson");
   const result = furrow.plan(field, { width: 24, headlandPasses: 2, turnRadius: 9 });
-  const tracks = new furrow.TrackGraph(result);
+  // The planner's module has none of the tracks' code.
+  assert.equal(furrow.TrackGraph, undefined);
+  assert.equal(furrow.shortestPath, undefined);
+  const tracks = new tracksEntry.TrackGraph(result);
   assert.ok(tracks.trackCount > 100 && tracks.junctionCount > 100, `${tracks.trackCount} tracks`);
   // From the middle of a swath facing its way, to the field's first vertex.
   const swath = result.features.find((f) => f.properties.kind === "swath" && f.properties.length_m > 200);
@@ -255,14 +279,15 @@ test("shortest paths along the tracks: TrackGraph and shortestPath", () => {
   assert.ok(lengths["on-the-spot"] > 0 && lengths["on-the-spot"] <= lengths.heading, JSON.stringify(lengths));
   if (lengths.tracks) assert.ok(lengths.heading <= lengths.tracks);
   // The one-call form, and several exits: the nearest wins.
-  const one = furrow.shortestPath(result, middle, swath.properties.bearing_deg, [exit, middle], { turning: "on-the-spot" });
+  const one = tracksEntry.shortestPath(result, middle, swath.properties.bearing_deg, [exit, middle], { turning: "on-the-spot" });
   assert.ok(one.properties.length_m <= lengths["on-the-spot"]);
   // Errors are FurrowErrors with codes.
   const code = (f) => {
     try {
       f();
     } catch (e) {
-      assert.ok(e instanceof furrow.FurrowError, String(e));
+      // One FurrowError class for both entries.
+      assert.ok(e instanceof furrow.FurrowError && e instanceof tracksEntry.FurrowError, String(e));
       return e.code;
     }
     return null;
@@ -270,7 +295,7 @@ test("shortest paths along the tracks: TrackGraph and shortestPath", () => {
   assert.equal(code(() => tracks.shortestPath([middle[0] + 0.1, middle[1]], 0, exit)), "off_tracks");
   assert.equal(code(() => tracks.shortestPath(middle, 0, exit, { turning: "sideways" })), "invalid_option");
   assert.equal(code(() => tracks.shortestPath("here", 0, exit)), "invalid_option");
-  assert.equal(code(() => new furrow.TrackGraph({ type: "FeatureCollection" })), "invalid_geojson");
+  assert.equal(code(() => new tracksEntry.TrackGraph({ type: "FeatureCollection" })), "invalid_geojson");
   tracks.free();
 });
 
@@ -282,7 +307,7 @@ function node(dir, script, file = "main.mjs") {
 
 test("the package as installed: the README's Node example as written, and calls before init", () => {
   const { dir, files } = installPacked("node");
-  for (const file of ["furrow.js", "furrow_wasm.js", "furrow_wasm_bg.wasm", "furrow.d.ts", "LICENSE-MIT", "LICENSE-APACHE"]) {
+  for (const file of ["furrow.js", "furrow_wasm.js", "furrow_wasm_bg.wasm", "furrow.d.ts", "load.js", "tracks.js", "tracks.d.ts", "furrow_tracks_wasm.js", "furrow_tracks_wasm_bg.wasm", "LICENSE-MIT", "LICENSE-APACHE"]) {
     assert.ok(files.includes(file), `the package holds ${file}`);
   }
   // The README's example that reads field.geojson, run as it is written.
@@ -312,6 +337,27 @@ test("the package as installed: the README's Node example as written, and calls 
   for (const line of lines.slice(0, 2)) assert.match(line, /^true not_initialised .*init\(\).*initSync/);
   if (!sync) assert.match(lines[2], /^true not_initialised initSync\(\) needs .*bytes/);
   assert.match(lines.at(-1), /^\d+\.\d+\.\d+/);
+  // furrow/tracks as installed: its own init (init() reading its file), the same FurrowError.
+  const tracks = node(
+    dir,
+    `import init, { plan, FurrowError } from "furrow";
+    import initTracks, { shortestPath, FurrowError as TracksError } from "furrow/tracks";
+    import { readFileSync } from "node:fs";
+    await init();
+    const result = plan(readFileSync("field.geojson", "utf8"));
+    const swath = result.features.find((f) => f.properties.kind === "swath").geometry.coordinates;
+    try {
+      shortestPath(result, swath[0], 0, swath.at(-1));
+    } catch (e) {
+      console.log(e instanceof FurrowError, e.code, e.message);
+    }
+    await initTracks();
+    const way = shortestPath(result, swath[0], 0, swath.at(-1), { turning: "on-the-spot" });
+    console.log(TracksError === FurrowError, way.properties.kind, way.properties.length_m > 0);`,
+    "tracks.mjs",
+  );
+  assert.match(tracks, /^true not_initialised .*initTracks\(\).*"furrow\/tracks"/);
+  assert.match(tracks, /\ntrue track_path true\n$/);
   // Without the .wasm file, init() says which file it could not read.
   rmSync(join(dir, "node_modules/furrow/furrow_wasm_bg.wasm"));
   const missing = node(

@@ -1,5 +1,5 @@
 // The package's TypeScript declarations as a strict TypeScript user sees them: pkg-tests/types/
-// usage.ts, and an import of every type the wasm module declares, compiled with the workspace's
+// usage.ts, and an import of every type the wasm modules declare, compiled with the workspace's
 // pinned typescript (`tsc --strict --noEmit`, declarations checked too) against the built pkg/.
 import { test } from "node:test";
 import assert from "node:assert/strict";
@@ -11,13 +11,17 @@ import { installLinked, PKG, ROOT } from "./install.mjs";
 test("the declarations compile with tsc --strict and export every type", () => {
   const dir = installLinked("types");
   copyFileSync(join(ROOT, "pkg-tests/types/usage.ts"), join(dir, "usage.ts"));
-  const dts = readFileSync(join(PKG, "furrow_wasm.d.ts"), "utf8");
-  const types = [...dts.matchAll(/^export (?:interface|type) (\w+)/gm)].map((m) => m[1]);
-  assert.ok(types.length > 30);
+  // Every type each wasm module declares, imported from the package entry that wraps it.
+  const typesOf = (file) =>
+    [...readFileSync(join(PKG, file), "utf8").matchAll(/^export (?:interface|type) (\w+)/gm)].map((m) => m[1]);
+  const types = typesOf("furrow_wasm.d.ts");
+  const trackTypes = typesOf("furrow_tracks_wasm.d.ts");
+  assert.ok(types.length > 30 && trackTypes.length >= 3);
   writeFileSync(
     join(dir, "every-type.ts"),
-    `import type { ${types.join(", ")} } from "furrow";\n` +
-      `export type Every = [${types.join(", ")}];\n`,
+    `import type * as Furrow from "furrow";\n` +
+      `import type * as Tracks from "furrow/tracks";\n` +
+      `export type Every = [${[...types.map((t) => `Furrow.${t}`), ...trackTypes.map((t) => `Tracks.${t}`)].join(", ")}];\n`,
   );
   const tsc = join(ROOT, "node_modules/typescript/bin/tsc");
   const args = ["--strict", "--noEmit", "--skipLibCheck", "false", "--target", "es2022"];

@@ -5,24 +5,37 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh rust
 
-echo "[build] wasm (release)"
+# The package holds two WebAssembly modules built from the same crate, each with one feature
+# (Cargo.toml): the planner (furrow_wasm, the package's main entry) and the shortest paths along
+# a plan's tracks (furrow_tracks_wasm, the "furrow/tracks" entry), so that a page that only plans
+# never loads the tracks' code.
 # The dependencies are optimised for size: 23 KB less gzipped (most of it the sorts that
 # i_overlay instantiates), no slower in Node within 2 % (at "z" the planner's own code plans 2.3
-# times slower). The planner's own code at opt-level 2: 14 KB less gzipped than at 3, and as
-# fast in Node (geometric mean of the corpus 0.99, interleaved: scripts/bench-compare.mjs),
-# which keeps the module clear of the 400 KB target. Native builds keep opt-level 3 throughout.
-cargo build --release --target wasm32-unknown-unknown --lib --features small-alloc \
-  --config 'profile.release.package."*".opt-level="z"' \
-  --config 'profile.release.opt-level=2'
+# times slower, at "s" 1.4 times). The planner's own code at opt-level 2 with LLVM's inlining
+# threshold at 100 (its default at opt-level 2 is 225): 17 KB less gzipped, and 4 to 8 % faster
+# in Chromium and Node (geometric means over the corpus, interleaved: scripts/bench-compare.mjs).
+# The threshold is passed by `cargo rustc` to this crate alone, so the dependencies keep their
+# size-optimised inlining; the whole module's inlining is done there (fat LTO).
+# Native builds keep opt-level 3 throughout.
 rm -rf pkg
-# furrow_wasm.js is wasm-bindgen's module; furrow.js (js/) wraps it and recreates the instance
-# after a trap, with the reset function wasm-bindgen generates on request.
-# The name section (function names for stack traces, 125 KB) and the producers section are left
-# out of the shipped module.
-wasm-bindgen --target web --out-name furrow_wasm --experimental-reset-state-function \
-  --remove-name-section --remove-producers-section \
-  --out-dir pkg target/wasm32-unknown-unknown/release/furrow.wasm
-cp js/furrow.js js/furrow.d.ts LICENSE-MIT LICENSE-APACHE pkg/
+build_module() { # feature, wasm-bindgen output name
+  echo "[build] wasm (release): $2"
+  cargo rustc --release --target wasm32-unknown-unknown --lib --crate-type cdylib \
+    --no-default-features --features "small-alloc,$1" \
+    --config 'profile.release.package."*".opt-level="z"' \
+    --config 'profile.release.opt-level=2' \
+    -- -C llvm-args=-inline-threshold=100
+  # furrow_wasm.js is wasm-bindgen's module; furrow.js (js/) wraps it and recreates the instance
+  # after a trap, with the reset function wasm-bindgen generates on request.
+  # The name section (function names for stack traces, 125 KB) and the producers section are left
+  # out of the shipped module.
+  wasm-bindgen --target web --out-name "$2" --experimental-reset-state-function \
+    --remove-name-section --remove-producers-section \
+    --out-dir pkg target/wasm32-unknown-unknown/release/furrow.wasm
+}
+build_module planner-api furrow_wasm
+build_module tracks-api furrow_tracks_wasm
+cp js/furrow.js js/furrow.d.ts js/tracks.js js/tracks.d.ts js/load.js LICENSE-MIT LICENSE-APACHE pkg/
 # Debian's wasm-opt (binaryen 108) produces a module that fails to load: never run it here.
 
 version=$(awk -F'"' '/^version = / { print $2; exit }' Cargo.toml)
@@ -46,19 +59,23 @@ cat > pkg/package.json <<JSON
   "types": "furrow.d.ts",
   "exports": {
     ".": { "types": "./furrow.d.ts", "default": "./furrow.js" },
+    "./tracks": { "types": "./tracks.d.ts", "default": "./tracks.js" },
     "./furrow_wasm_bg.wasm": "./furrow_wasm_bg.wasm",
+    "./furrow_tracks_wasm_bg.wasm": "./furrow_tracks_wasm_bg.wasm",
     "./package.json": "./package.json"
   },
-  "files": ["furrow.js", "furrow.d.ts", "furrow_wasm.js", "furrow_wasm.d.ts", "furrow_wasm_bg.wasm", "furrow_wasm_bg.wasm.d.ts", "README.md", "LICENSE-MIT", "LICENSE-APACHE"],
+  "files": ["furrow.js", "furrow.d.ts", "load.js", "furrow_wasm.js", "furrow_wasm.d.ts", "furrow_wasm_bg.wasm", "furrow_wasm_bg.wasm.d.ts", "tracks.js", "tracks.d.ts", "furrow_tracks_wasm.js", "furrow_tracks_wasm.d.ts", "furrow_tracks_wasm_bg.wasm", "furrow_tracks_wasm_bg.wasm.d.ts", "README.md", "LICENSE-MIT", "LICENSE-APACHE"],
   "engines": { "node": ">=18" },
   "sideEffects": false,
   "keywords": ["agriculture", "coverage path planning", "geojson", "wasm", "tractor"]
 }
 JSON
 cp js/README.md pkg/README.md
-raw=$(wc -c < pkg/furrow_wasm_bg.wasm)
 # Gzipped as the bench measures it against the 400 KB target (Node's zlib at level 9; GNU gzip
 # comes out about 2.4 KB smaller).
-gz=$(node -e 'process.stdout.write(String(require("zlib").gzipSync(require("fs").readFileSync(process.argv[1]), { level: 9 }).length))' pkg/furrow_wasm_bg.wasm)
-echo "[build] pkg/furrow_wasm_bg.wasm: $raw bytes, $gz gzipped (Node's zlib, level 9)"
+for module in furrow_wasm furrow_tracks_wasm; do
+  raw=$(wc -c < "pkg/${module}_bg.wasm")
+  gz=$(node -e 'process.stdout.write(String(require("zlib").gzipSync(require("fs").readFileSync(process.argv[1]), { level: 9 }).length))' "pkg/${module}_bg.wasm")
+  echo "[build] pkg/${module}_bg.wasm: $raw bytes, $gz gzipped (Node's zlib, level 9)"
+done
 node scripts/site.mjs

@@ -12,7 +12,7 @@ fn read(path: &str) -> String {
 #[test]
 fn every_error_code_is_documented_and_typed() {
     let readme = read("README.md");
-    let dts = read("src/bindings.d.ts");
+    let dts = read("src/bindings/plan.d.ts");
     for code in ErrorCode::ALL {
         let c = code.as_str();
         assert!(
@@ -21,7 +21,7 @@ fn every_error_code_is_documented_and_typed() {
         );
         assert!(
             dts.contains(&format!("\"{c}\"")),
-            "bindings.d.ts ErrorCode lacks {c}"
+            "plan.d.ts ErrorCode lacks {c}"
         );
     }
 }
@@ -40,7 +40,7 @@ fn every_warning_code_is_documented() {
 #[test]
 fn every_summary_member_and_option_is_typed_and_documented() {
     let readme = read("README.md");
-    let dts = read("src/bindings.d.ts");
+    let dts = read("src/bindings/plan.d.ts");
     let text = read("tests/fields/square-1ha.geojson");
     let plan = plan_geojson(&text, &PlanOptions::default()).expect("plans");
     let summary = serde_json::to_value(&plan.summary).expect("json");
@@ -78,7 +78,7 @@ fn the_direction_search_is_described_as_it_runs() {
         .find(|(key, _, _)| *key == "search")
         .expect("the search option");
     assert!(help.contains("about 30 to 40 directions"), "{help}");
-    assert!(read("src/bindings.d.ts").contains("about 30 to 40 evaluations"));
+    assert!(read("src/bindings/plan.d.ts").contains("about 30 to 40 evaluations"));
     assert!(read("README.md").contains("about 30 to 40 evaluations"));
     let options = PlanOptions::from_json_str(r#"{"decomposition": "none", "direction": "search"}"#)
         .expect("options");

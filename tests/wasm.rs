@@ -3,7 +3,8 @@
 //! (`plan` as JavaScript calls it, errors as JavaScript sees them).
 #![cfg(target_arch = "wasm32")]
 
-use furrow::bindings::{default_options, plan_js, shortest_path_js, version, TrackGraphJs};
+use furrow::bindings::plan::{default_options, plan_js, version};
+use furrow::bindings::tracks::{shortest_path_js, TrackGraphJs};
 use furrow::{plan_geojson, PlanOptions};
 use js_sys::{Reflect, JSON};
 use wasm_bindgen::{JsCast, JsValue};

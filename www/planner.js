@@ -27,7 +27,7 @@ let nextId = 0;
 let running = null; // the call the planner is working on
 let waiting = null; // the newest call not yet started
 let lastPlan = null; // in the page: the last plan made, for its tracks
-let inPageTracks = null; // in the page: the module's TrackGraph class, and the graph of lastPlan
+let inPageTracks = null; // in the page: furrow/tracks (loaded on the first way asked), and the graph of lastPlan
 const calls = new Map(); // id -> resolve, for the ways and files asked of the worker
 
 /** Starts the planner once; resolves to `{ version, worker }` (worker: whether it runs in one). */
@@ -71,7 +71,7 @@ async function startInPage() {
   const module = await import("./pkg/furrow.js");
   await module.default();
   inPage = module.plan;
-  inPageTracks = { TrackGraph: module.TrackGraph, graph: null };
+  inPageTracks = { module: null, graph: null };
   return { version: module.version(), worker: false };
 }
 
@@ -132,16 +132,32 @@ export function runPath(position, heading, target, options) {
           worker.postMessage({ id, path: { position, heading, target, options } });
           return;
         }
-        try {
-          if (!lastPlan) throw Object.assign(new Error("there is no plan to find a way along"), { code: "no_path" });
-          inPageTracks.graph ??= new inPageTracks.TrackGraph(lastPlan, options);
-          resolve({ id, path: inPageTracks.graph.shortestPath(position, heading, target, options), ms: performance.now() - t0 });
-        } catch (e) {
-          resolve({ id, error: plainError(e), ms: performance.now() - t0 });
-        }
+        const done = (result) => resolve({ id, ...result, ms: performance.now() - t0 });
+        pathInPage(position, heading, target, options).then(
+          (path) => done({ path }),
+          (e) => done({ error: plainError(e) }),
+        );
       }),
     (e) => ({ error: plainError(e), ms: 0 }),
   );
+}
+
+/** The shortest way along lastPlan's tracks in the page, furrow/tracks loaded on first use. */
+async function pathInPage(position, heading, target, options) {
+  if (!lastPlan) throw Object.assign(new Error("there is no plan to find a way along"), { code: "no_path" });
+  inPageTracks.module ??= import("./pkg/tracks.js").then(
+    async (module) => {
+      await module.default();
+      return module;
+    },
+    (e) => {
+      inPageTracks.module = null; // asked again, it tries again
+      throw e;
+    },
+  );
+  const { TrackGraph } = await inPageTracks.module;
+  inPageTracks.graph ??= new TrackGraph(lastPlan, options);
+  return inPageTracks.graph.shortestPath(position, heading, target, options);
 }
 
 /**

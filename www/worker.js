@@ -5,7 +5,8 @@
 // drawing). Out: `{ id, plan, ms }`, `{ id, path, ms }` or `{ id, error, ms }` (the sampled
 // path's typed arrays are transferred, not copied), `{ id, read: { text, field } | { error } }`,
 // and `{ id: 0, version }` once the module is ready (or `{ id: 0, failed }` if it cannot load).
-import init, { plan, version, TrackGraph } from "./pkg/furrow.js";
+// The tracks' module (the package's furrow/tracks) loads on the first way asked.
+import init, { plan, version } from "./pkg/furrow.js";
 import { plainError } from "./errors.js";
 import { readFieldFile } from "./reading.js";
 
@@ -16,6 +17,22 @@ const ready = init().then(
 
 let lastPlan = null; // the last plan made: its features, for its tracks
 let tracks = null; // the track graph of lastPlan, made on the first path asked
+let tracksModule = null; // furrow/tracks, once loaded
+
+/** The tracks' module, loaded on first use. */
+async function loadTracks() {
+  tracksModule ??= import("./pkg/tracks.js").then(
+    async (module) => {
+      await module.default();
+      return module;
+    },
+    (e) => {
+      tracksModule = null; // asked again, it tries again
+      throw e;
+    },
+  );
+  return tracksModule;
+}
 
 self.onmessage = async (event) => {
   const { id, field, options, path, read } = event.data ?? {};
@@ -29,6 +46,7 @@ self.onmessage = async (event) => {
   try {
     if (path) {
       if (!lastPlan) throw Object.assign(new Error("there is no plan to find a way along"), { code: "no_path" });
+      const { TrackGraph } = await loadTracks();
       tracks ??= new TrackGraph(lastPlan, path.options);
       const result = tracks.shortestPath(path.position, path.heading, path.target, path.options);
       self.postMessage({ id, path: result, ms: performance.now() - t0 });

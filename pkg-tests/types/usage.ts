@@ -6,8 +6,6 @@ import init, {
   FurrowError,
   initSync,
   plan,
-  shortestPath,
-  TrackGraph,
   version,
   type Decomposition,
   type DirectionMode,
@@ -24,14 +22,20 @@ import init, {
   type Position,
   type SearchMethod,
   type SwathPattern,
+} from "furrow";
+import initTracks, {
+  FurrowError as TracksError,
+  shortestPath,
+  TrackGraph,
   type TrackPathFeature,
   type TrackPathOptions,
   type Turning,
-} from "furrow";
+} from "furrow/tracks";
 
 export async function load(bytes?: Uint8Array): Promise<string> {
   if (bytes) initSync({ module: bytes });
   else await init();
+  await initTracks();
   return version();
 }
 
@@ -71,6 +75,6 @@ export function describe(e: unknown): string {
   return String(e);
 }
 
-export const refused: FurrowError = new FurrowError("no way out", { code: "no_path" });
+export const refused: FurrowError = new TracksError("no way out", { code: "no_path" });
 export const oneCall = (result: Plan, from: Position, to: Position[]): TrackPathFeature =>
   shortestPath(result, from, 90, to);

@@ -1,0 +1,133 @@
+//! The planner's entry point (`furrow`): plan a field, the default options, the version.
+//!
+//! ```js
+//! import init, { plan } from "furrow";
+//! await init();
+//! const result = plan(fieldGeoJson, { width: 6, headlandPasses: 2 });
+//! ```
+
+use super::{json_text, to_js_error};
+use crate::error::{ErrorCode, PlanError};
+use crate::field::{geojson, validate};
+use crate::options::PlanOptions;
+use crate::output::json::to_json_string;
+use crate::plan::plan_stages;
+use wasm_bindgen::prelude::*;
+use web_time::Instant;
+
+#[wasm_bindgen(typescript_custom_section)]
+const TYPESCRIPT: &'static str = include_str!("plan.d.ts");
+
+/// Plans a field. `field` is GeoJSON (an object, or its text); `options` may be left out.
+/// Returns the plan as a GeoJSON FeatureCollection with `summary` and `warnings`.
+/// (Its TypeScript declaration, with `options` optional, is in `plan.d.ts`.)
+#[wasm_bindgen(js_name = plan, skip_typescript)]
+pub fn plan_js(field: JsValue, options: JsValue) -> Result<JsValue, JsValue> {
+    let started = Instant::now();
+    let options = read_options(options).map_err(|e| to_js_error(&e))?;
+    // An object is read as its JSON text: one string across the boundary rather than a call
+    // per property, and one reader for both forms. NaN and Infinity become null there, which
+    // the reader takes for a coordinate that is not a finite number.
+    let (text, object) = match field.as_string() {
+        Some(text) => (text, false),
+        None => (
+            json_text(&field).map_err(|_| {
+                to_js_error(&PlanError::new(
+                    ErrorCode::InvalidGeojson,
+                    "the field must be GeoJSON: its text, or an object of plain values",
+                ))
+            })?,
+            true,
+        ),
+    };
+    let input = geojson::parse_str(&text)
+        .map_err(|e| if object { without_text_place(e) } else { e })
+        .map_err(|e| to_js_error(&e))?;
+    let (field, warnings) =
+        validate::field_from_input(input, options.coordinates).map_err(|e| to_js_error(&e))?;
+    let read_ms = started.elapsed().as_secs_f64() * 1000.0;
+    let mut plan = plan_stages(field, &options, warnings).map_err(|e| to_js_error(&e))?;
+    plan.summary.planning_ms = started.elapsed().as_secs_f64() * 1000.0;
+    plan.summary.stages_ms.validation += read_ms;
+    // One string and the engine's JSON.parse are much cheaper than building the object
+    // property by property across the boundary.
+    let text = to_json_string(&plan.to_geojson()).map_err(|e| {
+        to_js_error(&PlanError::new(
+            ErrorCode::Internal,
+            format!("the plan could not be written: {e}"),
+        ))
+    })?;
+    let result = js_sys::JSON::parse(&text)?;
+    // The text is JavaScript's now: its memory goes back before the samples take theirs (a plan
+    // of 100,000 swaths has 80 MB of it).
+    drop(text);
+    let samples = plan.samples();
+    let columns = js_sys::Object::new();
+    let put =
+        |key: &str, value: JsValue| js_sys::Reflect::set(&columns, &JsValue::from_str(key), &value);
+    for (key, column) in [
+        ("x", &samples.x),
+        ("y", &samples.y),
+        ("heading_deg", &samples.heading_deg),
+        ("curvature", &samples.curvature),
+        ("distance_m", &samples.distance_m),
+        ("time_s", &samples.time_s),
+    ] {
+        put(key, js_sys::Float64Array::from(&column[..]).into())?;
+    }
+    for (key, column) in [
+        ("kind", &samples.kind),
+        ("reverse", &samples.reverse),
+        ("working", &samples.working),
+    ] {
+        put(key, js_sys::Uint8Array::from(&column[..]).into())?;
+    }
+    put(
+        "segment",
+        js_sys::Uint32Array::from(&samples.segment[..]).into(),
+    )?;
+    js_sys::Reflect::set(&result, &JsValue::from_str("samples"), &columns)?;
+    Ok(result)
+}
+
+/// The default value of every option.
+#[wasm_bindgen(js_name = defaultOptions, unchecked_return_type = "Required<PlanOptions>")]
+pub fn default_options() -> Result<JsValue, JsValue> {
+    let text =
+        to_json_string(&PlanOptions::default()).map_err(|e| JsValue::from_str(&e.to_string()))?;
+    js_sys::JSON::parse(&text)
+}
+
+/// The version of the planner.
+#[wasm_bindgen]
+pub fn version() -> String {
+    env!("CARGO_PKG_VERSION").to_string()
+}
+
+fn read_options(options: JsValue) -> Result<PlanOptions, PlanError> {
+    if options.is_undefined() || options.is_null() {
+        return Ok(PlanOptions::default());
+    }
+    // Through JSON text, so that unknown keys (typos) are refused exactly as on the command line.
+    let text = js_sys::JSON::stringify(&options)
+        .ok()
+        .and_then(|s| s.as_string())
+        .ok_or_else(|| {
+            PlanError::new(
+                ErrorCode::InvalidOption,
+                "options must be an object of plain values",
+            )
+        })?;
+    PlanOptions::from_json_str(&text)
+}
+
+/// An error in reading an object through its JSON text, without the place in that text (which
+/// the caller never saw): its feature says where.
+fn without_text_place(mut e: PlanError) -> PlanError {
+    if let Some(at) = e.message.rfind(" at line ") {
+        e.message.truncate(at);
+    }
+    e.line = None;
+    e.column = None;
+    e
+}
