@@ -6,6 +6,7 @@ import assert from "node:assert/strict";
 import { execFileSync } from "node:child_process";
 import { copyFileSync, existsSync, readFileSync, readdirSync, rmSync, writeFileSync } from "node:fs";
 import { join } from "node:path";
+import { gzipSync } from "node:zlib";
 import { codeBlocks, installPacked } from "./install.mjs";
 
 const pkgUrl = new URL("../pkg/", import.meta.url);
@@ -72,6 +73,14 @@ function moduleNames(dts) {
     .map((m) => m[1])
     .filter((name) => !name.startsWith("__wbg"));
 }
+
+test("the planner's module is within its 400 KB gzipped; the tracks' is apart from it", () => {
+  // Gzipped as scripts/build.sh and the bench report measure it (Node's zlib at level 9).
+  const gzipped = (file) => gzipSync(readFileSync(new URL(file, pkgUrl)), { level: 9 }).length;
+  const planner = gzipped("furrow_wasm_bg.wasm");
+  assert.ok(planner < 400_000, `furrow_wasm_bg.wasm is ${planner} bytes gzipped`);
+  assert.ok(gzipped("furrow_tracks_wasm_bg.wasm") > 20_000, "the tracks' code is in its own module");
+});
 
 test("TypeScript definitions declare the API and export every type", () => {
   const entry = readFileSync(new URL("furrow.d.ts", pkgUrl), "utf8");
