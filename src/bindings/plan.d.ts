@@ -352,7 +352,10 @@ export interface PlanSummary {
   headland_area_m2: number;
   /** Where the swaths lie (obstacles left out). */
   inner_field_area_m2: number;
-  /** Inner field area over field area: the share left for swaths, 0 to 1. */
+  /**
+   * Inner field area over the area of the field less the obstacles that have headlands: the
+   * share left for swaths, 0 to 1 (Fields2Cover's remaining-area objective for headlands).
+   */
   remaining_area_ratio: number;
   /** Headland area no pass covers: corners rounded to the turning radius, necks too narrow to turn in. */
   uncovered_headland_area_m2: number;
