@@ -20,7 +20,7 @@ use rstar::RTree;
 /// The most ways (four a block, or eight where a block may also drive back along its last
 /// swath) for which the block order is sequenced ([`super::sequence::solve`]); beyond it the order
 /// is [`nearest_order`]. At 1,024 ways the table of connection costs is 8 MB, and the ant colony
-/// and local search have a transition matrix to work on (see `sequence::DENSE_MAX_NODES`).
+/// and local search have a transition matrix to work on (see `sequence::compiled::DENSE_MAX_NODES`).
 pub const MAX_SEQUENCED_WAYS: usize = 1024;
 
 /// The blocks in nearest-neighbour order from `start` (or, without one, from the entry farthest
