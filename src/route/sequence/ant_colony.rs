@@ -55,6 +55,8 @@ impl Default for AntColony {
 /// cheapest ways to go on to and at the rest only when those are all worked. The local search
 /// then improves the four best distinct orders the colony found, and the best result is kept.
 /// With more than 1024 ways, or no iterations, it starts from a nearest-next order instead.
+///
+/// [`best_ways`]: super::best_ways
 pub fn solve_heuristic(problem: &SequenceProblem, settings: &AntColony) -> Sequence {
     let c = Compiled::new(problem, true);
     if c.block_count() == 0 {

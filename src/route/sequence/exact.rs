@@ -6,6 +6,8 @@ use super::compiled::{Compiled, DENSE_MAX_NODES};
 use super::{empty_sequence, AntColony, Sequence, SequenceMethod, SequenceProblem};
 
 /// [`solve`] is exact up to this many blocks (with ways).
+///
+/// [`solve`]: super::solve
 pub const EXACT_MAX_BLOCKS: usize = 12;
 
 /// The most steps (`2^blocks x ways^2`, about twice the additions its table takes) for which
@@ -14,6 +16,8 @@ pub const EXACT_MAX_BLOCKS: usize = 12;
 /// WebAssembly those 12 took about 10 ms exactly, 25 with eight ways (blocks that may also end
 /// by driving back along their last swath), the ant colony under 2; on the corpus the colony
 /// found the exact cost wherever the limit changed the solver.
+///
+/// [`solve`]: super::solve
 pub const EXACT_MAX_WORK: usize = 5_000_000;
 
 /// [`exhaustive`] enumerates every permutation up to this many blocks.

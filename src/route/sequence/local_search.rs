@@ -31,6 +31,8 @@ fn improves(candidate: f64, current: f64) -> bool {
 /// The best of `restarts` local searches (2-opt + or-opt as in [`solve_heuristic`]) each from a
 /// random block order: the yardstick the heuristic is measured against. At least one restart
 /// is made; the method reported is [`SequenceMethod::AntColony`] (a heuristic).
+///
+/// [`solve_heuristic`]: super::solve_heuristic
 pub fn random_restarts(problem: &SequenceProblem, restarts: usize, seed: u64) -> Sequence {
     let c = Compiled::new(problem, true);
     let blocks = c.block_count();
