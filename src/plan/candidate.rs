@@ -1,0 +1,589 @@
+//! A candidate plan: one decomposition worked from the stages before it (the field's direction
+//! and headlands) through its swaths, route and path to its metrics.
+
+use super::{route_settings, Prepared, DECOMPOSITION_TOLERANCE};
+use crate::decompose::block_headlands::cut_block_headlands;
+use crate::decompose::boustrophedon::{self, cluster_into_cells};
+use crate::decompose::split_merge::SplitMerge;
+use crate::decompose::{cluster_swaths, Blocks, Decomposition};
+use crate::direction::{search_area, AreaSearch, DirectionMode};
+use crate::error::{ErrorCode, PlanError, Warning, WarningCode};
+use crate::field::{Field, ProhibitedRegion};
+use crate::geometry::{forbids_every_direction, SweepFrame};
+use crate::headland::Headlands;
+use crate::metrics::{summarise, DirectionFigures, DirectionReport, StageTimes, Summary};
+use crate::objective::{measure_all, Machine, ObjectiveValues};
+use crate::obstacles::ObstacleClass;
+use crate::options::PlanOptions;
+use crate::path::{build_path, Path};
+use crate::prohibited::{forbidding, split};
+use crate::route::{plan_route, plan_route_on, Route, RouteSettings};
+use crate::swath::{generate_with, lifts, LinePlacement, Swath, SwathArea, SwathSettings, Swaths};
+use geo::{Area, BooleanOps};
+use web_time::Instant;
+
+/// A plan from the decomposition on.
+pub(super) struct Worked {
+    pub(super) method: Decomposition,
+    pub(super) headlands: Headlands,
+    pub(super) swaths: Swaths,
+    pub(super) blocks: Blocks,
+    pub(super) route: Route,
+    /// The path; empty where it is that of the `none` candidate (`shares_path`), which is taken
+    /// from it if this one is chosen (a plan of 100,000 swaths has 200 MB of path).
+    pub(super) path: Path,
+    pub(super) shares_path: bool,
+    pub(super) summary: Summary,
+    pub(super) warnings: Vec<Warning>,
+    pub(super) decomposition_evaluations: usize,
+    pub(super) block_headland_passes: usize,
+    pub(super) machine: Machine,
+}
+
+/// Decomposes the inner field, lays the swaths, and routes, paths and measures the plan. Where
+/// the blocks are those of `same_as` (a candidate worked before) with their swaths numbered
+/// otherwise, its route (renumbered) and path are taken: they depend on nothing else.
+pub(super) fn work(
+    prep: &Prepared,
+    method: Decomposition,
+    split: Option<SplitMerge>,
+    same_as: Option<&Worked>,
+    times: &mut StageTimes,
+) -> Result<Worked, PlanError> {
+    let mut clock = Instant::now();
+    let mut laid = match split {
+        Some(sm) => lay_split_merge(prep, sm)?,
+        None => lay_single_direction(prep, method)?,
+    };
+    lift_over_small_obstacles(prep, &mut laid);
+    laid.warnings
+        .extend(short_pieces_dropped(&laid.swaths, prep.options));
+    let blocks = cluster_swaths(&laid.swaths);
+    times.lap(&mut clock, |t| &mut t.decomposition);
+    let earlier = same_as.and_then(|w| reused(w, &laid, &blocks));
+    let route = route_candidate(prep, &laid, &blocks, earlier.as_ref().map(|(r, _)| r));
+    times.lap(&mut clock, |t| &mut t.route);
+    laid.warnings.extend(straight_connections(&route));
+    let built = earlier.is_none().then(|| {
+        build_path(
+            &route,
+            &laid.swaths,
+            &laid.headlands.passes,
+            &prep.options.vehicle(),
+            Some(&prep.area),
+        )
+    });
+    let Some(path) = built.as_ref().or(earlier.as_ref().map(|&(_, path)| path)) else {
+        return Err(PlanError::new(
+            ErrorCode::Internal,
+            "a candidate without its path",
+        ));
+    };
+    times.lap(&mut clock, |t| &mut t.path);
+    laid.warnings.extend(turns_leaving(path, prep.options));
+    let machine = prep.options.machine();
+    let summary = measure(prep, &laid, &blocks, &route, path, machine);
+    times.lap(&mut clock, |t| &mut t.metrics);
+    let shares_path = built.is_none();
+    Ok(Worked {
+        method,
+        headlands: laid.headlands,
+        swaths: laid.swaths,
+        blocks,
+        route,
+        path: built.unwrap_or_default(),
+        shares_path,
+        summary,
+        warnings: laid.warnings,
+        decomposition_evaluations: laid.decomposition_evaluations,
+        block_headland_passes: laid.block_headland_passes,
+        machine,
+    })
+}
+
+/// A candidate's swaths, the headlands they are laid in, and what laying them found.
+struct Laid {
+    /// The field's headlands, with passes round the blocks where split and merge adds them.
+    headlands: Headlands,
+    swaths: Swaths,
+    warnings: Vec<Warning>,
+    /// Directions evaluated for the plan: the field's and the candidate's own.
+    evaluations: usize,
+    /// Directions evaluated by the decomposition.
+    decomposition_evaluations: usize,
+    /// Headland passes laid round the blocks.
+    block_headland_passes: usize,
+}
+
+/// Split and merge's blocks: their own headland passes where they need them, and the swaths of
+/// each at its own direction.
+fn lay_split_merge(prep: &Prepared, sm: SplitMerge) -> Result<Laid, PlanError> {
+    let (field, options) = (prep.field, prep.options);
+    let width = options.width;
+    let mut headlands = prep.headlands.clone();
+    let warnings = sm
+        .not_worked
+        .iter()
+        .filter_map(|&r| field.prohibited.get(r))
+        .map(region_not_worked)
+        .collect();
+    let cut = cut_block_headlands(
+        &sm.blocks,
+        width,
+        options.headland_passes,
+        &options.forbidden_bearings_deg,
+        &field.prohibited,
+    );
+    let mut block_headland_passes = 0;
+    if !cut.bands.0.is_empty() {
+        block_headland_passes = cut.passes.len();
+        headlands.area_m2 += cut.bands.unsigned_area();
+        headlands.inner = headlands.inner.difference(&cut.bands);
+        headlands.passes.extend(cut.passes);
+    }
+    let mut swaths = no_swaths(
+        cut.blocks
+            .first()
+            .map_or(prep.direction.bearing, |b| b.bearing),
+        width,
+    );
+    for b in cut.blocks {
+        swaths.append(area_swaths(b.area, b.bearing, None, options)?);
+    }
+    Ok(Laid {
+        headlands,
+        swaths,
+        warnings,
+        evaluations: prep.direction.evaluations + sm.evaluations,
+        decomposition_evaluations: sm.evaluations,
+        block_headland_passes,
+    })
+}
+
+/// The swaths at the field's direction, in one block (`none`) or clustered into boustrophedon
+/// cells, and those of the prohibited regions worked at their own directions.
+fn lay_single_direction(prep: &Prepared, method: Decomposition) -> Result<Laid, PlanError> {
+    let Some(single) = &prep.single else {
+        return Err(PlanError::new(
+            ErrorCode::Internal,
+            "a single-direction plan without its swaths",
+        ));
+    };
+    let bearing = prep.direction.bearing;
+    let mut swaths = single.main.clone();
+    if method == Decomposition::Boustrophedon {
+        let tolerance = prep.options.width * DECOMPOSITION_TOLERANCE;
+        let cells = boustrophedon::decompose(&single.main_area, bearing, tolerance);
+        cluster_into_cells(&mut swaths, &cells);
+    } else {
+        swaths.areas.push(SwathArea {
+            swaths: 0..swaths.swaths.len(),
+            bearing,
+            region: None,
+            area: single.main_area.clone(),
+        });
+    }
+    for own in &single.regions {
+        swaths.append(own.clone());
+    }
+    Ok(Laid {
+        headlands: prep.headlands.clone(),
+        swaths,
+        warnings: single.warnings.clone(),
+        evaluations: prep.direction.evaluations + single.evaluations,
+        decomposition_evaluations: 0,
+        block_headland_passes: 0,
+    })
+}
+
+/// Marks where the swaths pass over obstacles too small for a headland of their own (class A),
+/// to be driven with the implement lifted, with a warning for each.
+fn lift_over_small_obstacles(prep: &Prepared, laid: &mut Laid) {
+    let field = prep.field;
+    let small: Vec<(usize, &geo::Polygon)> = field
+        .obstacles
+        .iter()
+        .enumerate()
+        .filter(|&(i, _)| prep.obstacles.class[i] == ObstacleClass::A)
+        .map(|(i, o)| (i, &o.polygon))
+        .collect();
+    laid.swaths.lifts = lifts(&laid.swaths, &small);
+    for &(i, _) in &small {
+        laid.warnings.push(
+            Warning::new(
+                WarningCode::ImplementLifted,
+                format!(
+                    "{} is less than {:.1} m across the driving direction; swaths run past it with the implement lifted",
+                    field.obstacles[i].subject(),
+                    prep.options.obstacle_threshold_m()
+                ),
+            )
+            .at_feature(field.obstacles[i].feature),
+        );
+    }
+}
+
+/// The warning for the swath pieces too short to work, left to the headland passes.
+fn short_pieces_dropped(swaths: &Swaths, options: &PlanOptions) -> Option<Warning> {
+    if swaths.dropped == 0 {
+        return None;
+    }
+    Some(Warning::new(
+        WarningCode::ShortSwathsDropped,
+        format!(
+            "{} shorter than {:.1} m left to the headland passes",
+            if swaths.dropped == 1 {
+                "1 swath piece".to_string()
+            } else {
+                format!("{} swath pieces", swaths.dropped)
+            },
+            options.min_swath_length_m()
+        ),
+    ))
+}
+
+/// The route and path of `earlier` (a candidate worked before) where its headland passes and
+/// blocks are this one's, the route renumbered for this one's swaths.
+fn reused<'w>(earlier: &'w Worked, laid: &Laid, blocks: &Blocks) -> Option<(Route, &'w Path)> {
+    if earlier.headlands.passes != laid.headlands.passes {
+        return None;
+    }
+    let new_index = renumbering(&earlier.swaths, &earlier.blocks, &laid.swaths, blocks)?;
+    Some((
+        earlier.route.with_swaths_renumbered(&new_index)?,
+        &earlier.path,
+    ))
+}
+
+/// The candidate's route: the route reused from an earlier candidate, if any; else routed on
+/// the field's headland graph where the candidate adds no passes of its own, or on a graph of
+/// its passes.
+fn route_candidate(prep: &Prepared, laid: &Laid, blocks: &Blocks, reused: Option<&Route>) -> Route {
+    let (field, options) = (prep.field, prep.options);
+    let passes = &laid.headlands.passes;
+    match reused {
+        Some(route) => route.clone(),
+        // The passes (and the inner field) of `prep` alone: their graph is built.
+        None if passes.len() == prep.headlands.passes.len() => plan_route_on(
+            &prep.graph,
+            &laid.swaths,
+            blocks,
+            passes,
+            &route_settings(options, field),
+        ),
+        None => plan_route(
+            &laid.swaths,
+            blocks,
+            passes,
+            &RouteSettings {
+                crop: Some(laid.headlands.inner.clone()),
+                ..route_settings(options, field)
+            },
+        ),
+    }
+}
+
+/// The warning for the connections that found no way along the headland and run straight
+/// across the field.
+fn straight_connections(route: &Route) -> Option<Warning> {
+    let straight = route.all_connections().filter(|c| c.straight).count();
+    if straight == 0 {
+        return None;
+    }
+    Some(Warning::new(
+        WarningCode::StraightConnections,
+        format!(
+            "{} found no way along the headland and {} straight across the field",
+            if straight == 1 {
+                "1 connection".to_string()
+            } else {
+                format!("{straight} connections")
+            },
+            if straight == 1 { "runs" } else { "run" }
+        ),
+    ))
+}
+
+/// The candidate's figures: its direction report (the objective's cost of these swaths) and
+/// the summary of every stage.
+fn measure(
+    prep: &Prepared,
+    laid: &Laid,
+    blocks: &Blocks,
+    route: &Route,
+    path: &Path,
+    machine: Machine,
+) -> Summary {
+    let options = prep.options;
+    let stats = measure_all(&laid.swaths, &machine);
+    let mode = prep.direction.mode;
+    let direction = DirectionReport {
+        mode,
+        method: (mode == DirectionMode::Search).then_some(options.search),
+        objective: prep.objective.name(),
+        evaluations: laid.evaluations,
+        cost: prep.objective.cost(&stats, &machine),
+        search_cost: prep.direction.search_cost,
+    };
+    summarise(
+        prep.field,
+        prep.obstacles,
+        &laid.headlands,
+        &laid.swaths,
+        blocks,
+        route,
+        path,
+        &DirectionFigures {
+            direction,
+            objectives: ObjectiveValues::of(&stats, &machine),
+            machine,
+        },
+    )
+}
+
+/// The warning for the turns that leave the field, with their cause: how far beyond the swath
+/// ends the cheapest of them reaches against the depth of the headland.
+fn turns_leaving(path: &Path, options: &PlanOptions) -> Option<Warning> {
+    let outside: Vec<&crate::path::TurnReport> = path
+        .segments
+        .iter()
+        .filter_map(|s| s.turn.as_ref())
+        .filter(|t| !t.inside)
+        .collect();
+    if outside.is_empty() {
+        return None;
+    }
+    let reach = outside.iter().map(|t| t.reach_m).fold(0.0, f64::max);
+    let depth = options.headland_passes as f64 * options.width;
+    let hint = if options.reverse {
+        ""
+    } else {
+        "; allowing the machine to reverse (three-point turns) would need about one turning radius"
+    };
+    Some(Warning::new(
+        WarningCode::TurnLeavesField,
+        format!(
+            "{} leave the field or cross an obstacle: no turn the machine can drive fits there (they reach up to {reach:.1} m beyond the swath ends, against a headland {depth:.1} m deep at most){hint}",
+            if outside.len() == 1 {
+                "1 turn".to_string()
+            } else {
+                format!("{} turns", outside.len())
+            }
+        ),
+    ))
+}
+
+/// Where the blocks of `b` are those of `a` in the same order, of the same swaths in the same
+/// order (numbered otherwise), the index in `b` of each swath of `a` that a block holds.
+fn renumbering(
+    a: &Swaths,
+    a_blocks: &Blocks,
+    b: &Swaths,
+    b_blocks: &Blocks,
+) -> Option<Vec<Option<usize>>> {
+    if a_blocks.blocks.len() != b_blocks.blocks.len() || a.swaths.len() != b.swaths.len() {
+        return None;
+    }
+    let mut new_index = vec![None; a.swaths.len()];
+    for (x, y) in a_blocks.blocks.iter().zip(&b_blocks.blocks) {
+        if x.bearing != y.bearing || x.swaths.len() != y.swaths.len() {
+            return None;
+        }
+        for (&i, &j) in x.swaths.iter().zip(&y.swaths) {
+            let (s, t) = (a.swaths.get(i)?, b.swaths.get(j)?);
+            if (Swath { index: j, ..*s }) != *t {
+                return None;
+            }
+            *new_index.get_mut(i)? = Some(j);
+        }
+    }
+    Some(new_index)
+}
+
+/// The swaths at the field's one direction before any decomposition, shared by `none` and
+/// `boustrophedon`: those of the inner field less the prohibited regions that forbid the
+/// direction (`main`, of `main_area`), and those of each such region at its own best direction.
+pub(super) struct SingleDirection {
+    pub(super) main_area: geo::MultiPolygon,
+    pub(super) main: Swaths,
+    pub(super) regions: Vec<Swaths>,
+    pub(super) warnings: Vec<Warning>,
+    pub(super) evaluations: usize,
+}
+
+/// Lays the swaths of the inner field at `bearing` (see [`SingleDirection`]).
+pub(super) fn single_direction(
+    field: &Field,
+    options: &PlanOptions,
+    inner: &geo::MultiPolygon,
+    bearing: f64,
+    placement: LinePlacement,
+    search: &AreaSearch,
+) -> Result<SingleDirection, PlanError> {
+    // Prohibited regions that forbid the direction are cut out and worked in their own.
+    let cut = forbidding(&field.prohibited, bearing);
+    let (main_area, parts) = if cut.is_empty() {
+        (inner.clone(), Vec::new())
+    } else {
+        split(
+            inner,
+            &field.prohibited,
+            &cut,
+            &options.forbidden_bearings_deg,
+        )
+    };
+    let main = generate_with(
+        &main_area,
+        &SwathSettings {
+            bearing,
+            width: options.width,
+            min_length: options.min_swath_length_m(),
+            placement,
+        },
+    )?;
+    let mut out = SingleDirection {
+        main_area,
+        main,
+        regions: Vec::new(),
+        warnings: Vec::new(),
+        evaluations: 0,
+    };
+    for part in parts {
+        let region = &field.prohibited[part.region];
+        if forbids_every_direction(&part.forbidden) {
+            out.warnings.push(region_not_worked(region));
+            continue;
+        }
+        let best = search_area(&part.area, &part.forbidden, search)?;
+        out.evaluations += best.evaluations;
+        out.regions.push(area_swaths(
+            part.area,
+            best.bearing,
+            Some(part.region),
+            options,
+        )?);
+        out.warnings.push(
+            Warning::new(
+                WarningCode::RegionOwnDirection,
+                format!(
+                    "{} forbids the field's direction of {:.1} degrees; it is worked at {:.1} degrees",
+                    region.subject(),
+                    bearing.to_degrees(),
+                    best.bearing.to_degrees()
+                ),
+            )
+            .at_feature(region.feature),
+        );
+    }
+    Ok(out)
+}
+
+/// The warning for a prohibited region whose ranges, with the others that hold in it, leave no
+/// direction.
+fn region_not_worked(region: &ProhibitedRegion) -> Warning {
+    Warning::new(
+        WarningCode::RegionNotWorked,
+        format!(
+            "{} and the other forbidden ranges that hold in it leave no driving direction; it gets no swaths",
+            region.subject()
+        ),
+    )
+    .at_feature(region.feature)
+}
+
+/// The swaths of an area worked at a direction of its own (a block, or a prohibited region),
+/// the first line half a width inside it, as one area.
+fn area_swaths(
+    area: geo::MultiPolygon,
+    bearing: f64,
+    region: Option<usize>,
+    options: &PlanOptions,
+) -> Result<Swaths, PlanError> {
+    let mut own = generate_with(
+        &area,
+        &SwathSettings {
+            bearing,
+            width: options.width,
+            min_length: options.min_swath_length_m(),
+            placement: LinePlacement::FromEdge,
+        },
+    )?;
+    own.areas.push(SwathArea {
+        swaths: 0..own.swaths.len(),
+        bearing,
+        region,
+        area,
+    });
+    Ok(own)
+}
+
+/// An empty set of swaths at a direction.
+fn no_swaths(bearing: f64, width: f64) -> Swaths {
+    Swaths {
+        bearing,
+        width,
+        frame: SweepFrame::new(bearing),
+        swaths: Vec::new(),
+        dropped: 0,
+        lifts: Vec::new(),
+        areas: Vec::new(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::plan::plan_geojson;
+
+    #[test]
+    fn a_route_renumbered_is_the_route_of_the_same_blocks_numbered_otherwise() {
+        // On obstacles-4 the boustrophedon cells hold the blocks of `none`, in the same order,
+        // their swaths numbered cell by cell.
+        let path = concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/tests/fields/obstacles-4.geojson"
+        );
+        let text = std::fs::read_to_string(path).expect("the corpus copy");
+        let options = PlanOptions {
+            width: 12.0,
+            headland_passes: 1,
+            turn_radius: 6.0,
+            decomposition: Decomposition::None,
+            ..PlanOptions::default()
+        };
+        let none = plan_geojson(&text, &options).expect("plans");
+        let mut cells = none.swaths.clone();
+        let main = &none.swaths.areas[0];
+        let tolerance = none.options.width * DECOMPOSITION_TOLERANCE;
+        cluster_into_cells(
+            &mut cells,
+            &boustrophedon::decompose(&main.area, main.bearing, tolerance),
+        );
+        let cell_blocks = cluster_swaths(&cells);
+        let new_index =
+            renumbering(&none.swaths, &none.blocks, &cells, &cell_blocks).expect("the same blocks");
+        let moved = new_index
+            .iter()
+            .enumerate()
+            .filter(|&(i, j)| *j != Some(i))
+            .count();
+        assert!(
+            moved > 10,
+            "the cells number the swaths otherwise ({moved} moved)"
+        );
+        let fresh = plan_route(
+            &cells,
+            &cell_blocks,
+            &none.headlands.passes,
+            &route_settings(&none.options, &none.field),
+        );
+        assert_eq!(none.route.with_swaths_renumbered(&new_index), Some(fresh));
+        // Blocks that differ are not renumbered.
+        let mut fewer = cell_blocks.clone();
+        fewer.blocks.pop();
+        assert!(renumbering(&none.swaths, &none.blocks, &cells, &fewer).is_none());
+        let mut other = cell_blocks;
+        other.blocks[0].swaths.reverse();
+        assert!(renumbering(&none.swaths, &none.blocks, &cells, &other).is_none());
+    }
+}
