@@ -285,6 +285,9 @@ pub enum WarningCode {
     /// The plan is too large to output at full detail: its lines are drawn with coarser chords,
     /// or its path sampled farther apart than asked.
     OutputCoarsened,
+    /// The headland passes asked for leave no inner field: as many as leave one are laid (the
+    /// message says how many), none on a field narrower than them.
+    HeadlandPassesReduced,
 }
 
 impl WarningCode {
@@ -309,6 +312,7 @@ impl WarningCode {
         WarningCode::DirectionNotSearched,
         WarningCode::TurnLeavesField,
         WarningCode::OutputCoarsened,
+        WarningCode::HeadlandPassesReduced,
     ];
 
     /// The code as it appears in JSON.
@@ -333,6 +337,7 @@ impl WarningCode {
             WarningCode::DirectionNotSearched => "direction_not_searched",
             WarningCode::TurnLeavesField => "turn_leaves_field",
             WarningCode::OutputCoarsened => "output_coarsened",
+            WarningCode::HeadlandPassesReduced => "headland_passes_reduced",
         }
     }
 }

@@ -15,13 +15,13 @@ use crate::direction::{
     choose_bearing, edge_directions, reference_direction, search_field, search_region,
     search_vertices, AreaSearch, DirectionMode, DirectionRule, SearchMethod,
 };
-use crate::error::{PlanError, Warning, WarningCode};
+use crate::error::{ErrorCode, PlanError, Warning, WarningCode};
 use crate::field::projection::OutputAlong;
 use crate::field::Field;
 use crate::geometry::PlanarHypot;
 use crate::headland::complexity::check_offsets;
 use crate::headland::edges::{passes_per_edge, EdgeRule};
-use crate::headland::{build, HeadlandSettings, Headlands};
+use crate::headland::{build, EdgePasses, HeadlandSettings, Headlands};
 use crate::metrics::{DecompositionReport, StageTimes, Summary};
 use crate::objective::Objective;
 use crate::obstacles::{classify, ClassSettings, ObstacleClasses};
@@ -142,11 +142,94 @@ pub fn plan_geojson(text: &str, options: &PlanOptions) -> Result<Plan, PlanError
 
 /// Runs the stages on a field read by the caller, keeping the caller's warnings first.
 ///
+/// Where the headland passes asked for leave no inner field for swaths (the field is refused,
+/// or planned without a swath), the field is planned again with each smaller number of passes
+/// down to none, and the plan that covers most is kept ([`fewer_passes`]).
+pub(crate) fn plan_stages(
+    field: Field,
+    options: &PlanOptions,
+    warnings: Vec<Warning>,
+) -> Result<Plan, PlanError> {
+    // Kept for planning again with fewer passes (a copy of the outlines: far less than a plan).
+    let again = (options.headland_passes > 0).then(|| (field.clone(), warnings.clone()));
+    let planned = plan_with_passes(field, options, warnings);
+    let no_inner_field = match &planned {
+        Ok(plan) => plan.summary.swath_count == 0,
+        Err(e) => e.code == ErrorCode::HeadlandConsumesField,
+    };
+    match again {
+        Some((field, warnings)) if no_inner_field => {
+            let fewer = fewer_passes(&field, options, &warnings);
+            match (planned, fewer) {
+                (Ok(plan), Some(fewer)) if covers_more(&fewer, &plan) => Ok(fewer),
+                (Ok(plan), _) => Ok(plan),
+                (Err(_), Some(fewer)) => Ok(fewer),
+                (Err(e), None) => Err(PlanError {
+                    message: format!(
+                        "the field has no room for a pass of {} m, with or without headland passes: it is narrower than the working width nearly everywhere; use a narrower width",
+                        options.width
+                    ),
+                    ..e
+                }),
+            }
+        }
+        _ => planned,
+    }
+}
+
+/// Whether plan `a` covers a larger share of the field than `b`.
+fn covers_more(a: &Plan, b: &Plan) -> bool {
+    a.summary.coverage.coverage_ratio > b.summary.coverage.coverage_ratio + 1e-9
+}
+
+/// The plan, of those with fewer headland passes than `options` asks for (down to none), that
+/// covers the largest share of the field (ties to more passes), with a warning of the passes
+/// laid; `None` if none plans or covers anything.
+fn fewer_passes(field: &Field, options: &PlanOptions, warnings: &[Warning]) -> Option<Plan> {
+    let asked = options.headland_passes;
+    let mut best: Option<Plan> = None;
+    for passes in (0..asked).rev() {
+        let fewer = PlanOptions {
+            headland_passes: passes,
+            edge_passes: options
+                .edge_passes
+                .iter()
+                .map(|e| EdgePasses {
+                    passes: e.passes.min(passes),
+                    ..*e
+                })
+                .collect(),
+            ..options.clone()
+        };
+        let Ok(plan) = plan_with_passes(field.clone(), &fewer, warnings.to_vec()) else {
+            continue;
+        };
+        if plan.summary.coverage.coverage_ratio > 0.0
+            && best.as_ref().is_none_or(|b| covers_more(&plan, b))
+        {
+            best = Some(plan);
+        }
+    }
+    let mut plan = best?;
+    plan.warnings.push(Warning::new(
+        WarningCode::HeadlandPassesReduced,
+        format!(
+            "{asked} headland pass{} of {} m leave no inner field for swaths: {} laid, the number that covers most",
+            if asked == 1 { "" } else { "es" },
+            options.width,
+            plan.options.headland_passes,
+        ),
+    ));
+    Some(plan)
+}
+
+/// The stages, in order, with the headland passes `options` asks for.
+///
 /// The field is cleaned and checked ([`clean_field`]), its direction chosen
 /// ([`direction_mode`], [`choose_direction`]), its headlands laid ([`lay_headlands`]); then
 /// each decomposition tried is worked into a candidate plan (`auto::work_candidates`), the
 /// fastest chosen (`auto::choose`) and its coverage measured.
-pub(crate) fn plan_stages(
+fn plan_with_passes(
     mut field: Field,
     options: &PlanOptions,
     mut warnings: Vec<Warning>,

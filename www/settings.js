@@ -140,7 +140,7 @@ export function applySuggested(entry) {
 export function inputsNamedIn(error) {
   const ids = new Set();
   for (const m of String(error.message).matchAll(/`(\w+)`/g)) if (m[1] in ui.inputs) ids.add(m[1]);
-  if (error.code === "headland_consumes_field") ids.add("headlandPasses");
+  if (error.code === "headland_consumes_field") ids.add("width");
   return [...ids];
 }
 

@@ -534,7 +534,8 @@ export type WarningCode =
   | "region_not_worked"
   | "direction_not_searched"
   | "turn_leaves_field"
-  | "output_coarsened";
+  | "output_coarsened"
+  | "headland_passes_reduced";
 
 export interface PlanWarning {
   /** What the warning is about; see the README's warning reference. */

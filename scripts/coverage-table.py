@@ -1,0 +1,109 @@
+#!/usr/bin/env python3
+"""Coverage of plans on the register parcels of tests/fields/real/, measured independently of the
+planner's own figure: from the CLI's GeoJSON output with shapely, the footprint of every working
+feature (a strip of the width along it, flat ends, lifted stretches left out) against the parcel,
+in a transverse Mercator projection about the parcel (pyproj). Four machines, as in the table of
+docs/performance.md. Needs `pip install shapely pyproj`.
+
+usage: python3 scripts/coverage-table.py BINARY [--parcels DIR] [--json OUT]
+  BINARY   the CLI, e.g. target/release/examples/plan (cargo build --release --example plan)
+  --parcels a directory of one-parcel GeoJSON files (default: each feature of
+           tests/fields/real/*.geojson, written to a temporary directory)
+  --json   every parcel's figures, for comparing two binaries"""
+import json, subprocess, glob, sys, os, math, tempfile
+from concurrent.futures import ThreadPoolExecutor
+from shapely.geometry import shape, LineString, Polygon, MultiPolygon
+from shapely.ops import unary_union, substring
+from shapely import transform as stransform
+from pyproj import Transformer
+
+binary = sys.argv[1]
+pdir = None
+out_json = None
+if '--parcels' in sys.argv: pdir = sys.argv[sys.argv.index('--parcels') + 1]
+if '--json' in sys.argv: out_json = sys.argv[sys.argv.index('--json') + 1]
+if pdir is None:
+    pdir = tempfile.mkdtemp(prefix='furrow-parcels-')
+    real = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', 'tests', 'fields', 'real')
+    for path in sorted(glob.glob(os.path.join(real, '*.geojson'))):
+        stem = os.path.basename(path)[:-len('.geojson')]
+        for i, feature in enumerate(json.load(open(path))['features']):
+            with open(os.path.join(pdir, f'{stem}_{i:03d}.geojson'), 'w') as f:
+                json.dump(feature, f)
+MACHINES = [
+    ('mower 3 m, 2 passes, r 5', ['--width', '3', '--headland-passes', '2', '--turn-radius', '5'], 3.0),
+    ('drill 6 m, 2 passes, r 8', ['--width', '6', '--headland-passes', '2', '--turn-radius', '8'], 6.0),
+    ('drill 6 m reversing', ['--width', '6', '--headland-passes', '2', '--turn-radius', '8', '--reverse', 'true'], 6.0),
+    ('sprayer 24 m, 1 pass, r 9', ['--width', '24', '--headland-passes', '1', '--turn-radius', '9'], 24.0),
+]
+if os.environ.get('EXTRA'): MACHINES = [(m[0], m[1] + os.environ['EXTRA'].split(), m[2]) for m in MACHINES]
+
+def local_tf(g):
+    c = g.centroid
+    t = Transformer.from_crs('EPSG:4326', f'+proj=tmerc +lon_0={c.x} +lat_0={c.y} +ellps=WGS84', always_xy=True)
+    return lambda geom: stransform(geom, lambda xy: __import__('numpy').column_stack(t.transform(xy[:, 0], xy[:, 1])))
+
+def evaluate(path, args, w):
+    d = json.load(open(path)); g = shape(d['geometry'])
+    tf = local_tf(g)
+    field = tf(g).buffer(0)
+    reach = field.buffer(-w / 2, join_style=1).buffer(w / 2, join_style=1)
+    res = {'area': field.area, 'reach': reach.area}
+    p = subprocess.run([binary, path] + args, capture_output=True, text=True)
+    if p.returncode != 0:
+        try: res['error'] = json.loads(p.stderr.strip().splitlines()[-1])['code']
+        except Exception: res['error'] = p.stderr[:80]
+        return res
+    plan = json.loads(p.stdout)
+    feet = []; outside = 0.0; turns_out = 0
+    for f in plan['features']:
+        k = f['properties']['kind']
+        if f['geometry']['type'] != 'LineString': continue
+        if not f['properties'].get('working', k in ('swath', 'headland', 'fill')): 
+            continue
+        line = tf(shape(f['geometry']))
+        pieces = [line]
+        lifted = f['properties'].get('lifted')
+        if lifted:
+            pieces = []; pos = 0.0
+            for a, b in (lifted if isinstance(lifted[0], list) else [lifted]):
+                if a > pos: pieces.append(substring(line, pos, a))
+                pos = b
+            if pos < line.length: pieces.append(substring(line, pos, line.length))
+        for pc in pieces:
+            if pc.length > 0: feet.append(pc.buffer(w / 2, cap_style=2, join_style=1))
+    union = unary_union(feet) if feet else Polygon()
+    covered = union.intersection(field).area
+    total = sum(f.intersection(field).area for f in feet)
+    res.update(covered=covered, overlap=max(0.0, total - covered), outside=union.difference(field.buffer(0.05)).area,
+               summary_cov=plan['summary'].get('coverage'), turns_outside=plan['summary'].get('turns_outside_field', 0))
+    return res
+
+def run_machine(m):
+    name, args, w = m
+    files = sorted(glob.glob(pdir + '/*.geojson'))
+    with ThreadPoolExecutor(2) as ex:
+        results = list(ex.map(lambda f: (os.path.basename(f), evaluate(f, args, w)), files))
+    return name, results
+
+table = []
+allres = {}
+for m in MACHINES:
+    name, results = run_machine(m)
+    allres[name] = results
+    refused = [r for _, r in results if 'error' in r]
+    refused_reach = [r for r in refused if r['reach'] >= 0.5 * r['area']]
+    ok = [r for _, r in results if 'error' not in r]
+    A = sum(r['area'] for _, r in results)
+    cov = sum(r.get('covered', 0) for _, r in results) / A
+    reach = sum(r['reach'] for _, r in results) / A
+    ge97 = sum(1 for _, r in results if r.get('covered', 0) >= 0.97 * r['reach']) / len(results)
+    lt90 = sum(1 for _, r in results if r.get('covered', 0) < 0.90 * r['area']) / len(results)
+    ov = sum(r.get('overlap', 0) for r in ok) / sum(r['area'] for r in ok)
+    outside = sum(1 for r in ok if r['outside'] > 1.0)
+    tout = sum(1 for r in ok if r['turns_outside'] > 0)
+    table.append(f"| {name} | {len(refused)} ({len(refused_reach)}) | {100*cov:.1f} % | {100*reach:.2f} % | {100*cov/reach:.1f} % | {100*ge97:.0f} % | {100*lt90:.0f} % | {100*ov:.1f} % | {outside} | {tout} of {len(ok)} |")
+print('| machine | refused (of them reachable >= 50 %) | coverage, area-weighted | reachable (limit) | coverage of reachable | parcels >= 97 % of their reachable | parcels < 90 % covered | overlap | plans working > 1 m² outside | plans with turns outside |')
+print('|---|---|---|---|---|---|---|---|---|---|')
+print('\n'.join(table))
+if out_json: json.dump(allres, open(out_json, 'w'))
