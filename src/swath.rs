@@ -313,6 +313,46 @@ pub fn generate(
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn generate_with(area: &MultiPolygon, settings: &SwathSettings) -> Result<Swaths, PlanError> {
+    generate_lines(area, settings, false)
+}
+
+/// [`generate_with`], each swath ending where its whole strip (the implement's width, not only
+/// its centre line) is still inside `area`: for a field with no headland, whose swaths end at
+/// the boundary itself, so that a wide implement does not work past a slanted end. Each end is
+/// moved in to where both edges of the strip (1 mm in from its sides) are inside, if they come
+/// inside within a width of it; along its length the strip is not tested, so a side that is
+/// not parallel to the swaths, or a notch between the edges, may still be reached into (as by
+/// the outer swaths of any field worked without headland); and a piece the trimming would leave
+/// shorter than `min_length` is kept whole.
+///
+/// ```
+/// use furrow::swath::{generate_with, generate_within, LinePlacement, SwathSettings};
+/// use geo::{polygon, MultiPolygon};
+///
+/// // A 24 m strip whose north end slants up 1 m for every metre east, worked 12 m wide.
+/// let field = polygon![(x: 0., y: 0.), (x: 24., y: 0.), (x: 24., y: 124.), (x: 0., y: 100.)];
+/// let area = MultiPolygon::new(vec![field]);
+/// let settings = SwathSettings {
+///     bearing: 0.0, width: 12.0, min_length: 6.0, placement: LinePlacement::FromEdge,
+/// };
+/// // The first swath's centre line (x = 6) reaches y = 106; its strip (x = 0..12) fits to y = 100.
+/// assert!((generate_with(&area, &settings)?.swaths[0].along.1 - 106.0).abs() < 1e-9);
+/// assert!((generate_within(&area, &settings)?.swaths[0].along.1 - 100.0).abs() < 2e-3);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn generate_within(area: &MultiPolygon, settings: &SwathSettings) -> Result<Swaths, PlanError> {
+    generate_lines(area, settings, true)
+}
+
+/// How far in from the strip's edges [`generate_within`] tests it, metres.
+const STRIP_EDGE_IN_M: f64 = 1e-3;
+
+/// The swaths of `area`; with `strip_inside`, cut to where their whole strip is inside.
+fn generate_lines(
+    area: &MultiPolygon,
+    settings: &SwathSettings,
+    strip_inside: bool,
+) -> Result<Swaths, PlanError> {
     let SwathSettings {
         bearing,
         width,
@@ -347,9 +387,11 @@ pub fn generate_with(area: &MultiPolygon, settings: &SwathSettings) -> Result<Sw
             LinePlacement::Aligned { across } => aligned_offsets(lo, hi, width, across),
         };
         let offsets: Vec<f64> = placed.iter().map(|l| l.0).collect();
+        let edges = strip_inside.then(|| strip_edges(&frame, area, &offsets, width));
         // Most lines give one swath.
         swaths.reserve(offsets.len());
         let mut merged: Vec<(f64, f64)> = Vec::new();
+        let mut within: Vec<(f64, f64)> = Vec::new();
         frame.clip_each(area, &offsets, |line_index, line| {
             let Some(&(across, leftover)) = placed.get(line_index) else {
                 return;
@@ -362,6 +404,21 @@ pub fn generate_with(area: &MultiPolygon, settings: &SwathSettings) -> Result<Sw
                 (width - next_gap.min(prev_gap)).max(0.0)
             } else {
                 0.0
+            };
+            let line = match &edges {
+                Some(edges) => {
+                    let (left, right) = &edges[line_index];
+                    within.clear();
+                    // A piece the trimming would leave too short to work stays whole: a field
+                    // whose every swath that would be is still worked.
+                    within.extend(line.iter().map(|&piece| {
+                        trim_ends(piece, left, right, width)
+                            .filter(|t| t.1 - t.0 >= min_length)
+                            .unwrap_or(piece)
+                    }));
+                    &within[..]
+                }
+                None => line,
             };
             merge_touching(line, &mut merged);
             for &(a0, a1) in &merged {
@@ -391,6 +448,77 @@ pub fn generate_with(area: &MultiPolygon, settings: &SwathSettings) -> Result<Sw
         lifts: Vec::new(),
         areas: Vec::new(),
     })
+}
+
+/// The pieces of the two edges of each line's strip inside `area` (each edge
+/// [`STRIP_EDGE_IN_M`] in from the strip's side), by line.
+#[allow(clippy::type_complexity)]
+fn strip_edges(
+    frame: &SweepFrame,
+    area: &MultiPolygon,
+    offsets: &[f64],
+    width: f64,
+) -> Vec<(Vec<(f64, f64)>, Vec<(f64, f64)>)> {
+    let half = (width / 2.0 - STRIP_EDGE_IN_M).max(0.0);
+    // Both edges of every line, in the increasing order the sweep needs (the edges of a leftover
+    // line and its neighbour interleave).
+    let mut sides: Vec<(f64, usize)> = offsets
+        .iter()
+        .enumerate()
+        .flat_map(|(i, &c)| [(c - half, 2 * i), (c + half, 2 * i + 1)])
+        .collect();
+    sides.shared_sort_by(|a, b| a.0.total_cmp(&b.0));
+    let sorted: Vec<f64> = sides.iter().map(|s| s.0).collect();
+    let mut pieces = vec![Vec::new(); 2 * offsets.len()];
+    frame.clip_each(area, &sorted, |k, line| {
+        if let Some(&(_, side)) = sides.get(k) {
+            pieces[side] = line.to_vec();
+        }
+    });
+    let mut out = Vec::with_capacity(offsets.len());
+    let mut it = pieces.into_iter();
+    while let (Some(left), Some(right)) = (it.next(), it.next()) {
+        out.push((left, right));
+    }
+    out
+}
+
+/// A piece of a swath's centre line shortened at each end to where both edges of its strip
+/// are inside, where the end is slanted: an edge whose point level with the end is outside the
+/// area, and whose piece inside ends within `reach` of it, moves the end back to there. An edge
+/// outside for longer runs along a side that is not parallel to the swath, not across its end,
+/// and leaves the end as it is. `None` where nothing is left.
+fn trim_ends(
+    piece: (f64, f64),
+    left: &[(f64, f64)],
+    right: &[(f64, f64)],
+    reach: f64,
+) -> Option<(f64, f64)> {
+    let (mut a0, mut a1) = piece;
+    let inside = |side: &[(f64, f64)], a: f64| side.iter().any(|e| e.0 <= a && a <= e.1);
+    for side in [left, right] {
+        if !inside(side, piece.1) {
+            let back = side
+                .iter()
+                .map(|e| e.1)
+                .filter(|&e| e < piece.1 && e >= piece.1 - reach && e > piece.0)
+                .fold(f64::NEG_INFINITY, f64::max);
+            if back.is_finite() {
+                a1 = a1.min(back);
+            }
+        }
+        if !inside(side, piece.0) {
+            let on = side
+                .iter()
+                .map(|e| e.0)
+                .filter(|&e| e > piece.0 && e <= piece.0 + reach && e < piece.1)
+                .fold(f64::INFINITY, f64::min);
+            if on.is_finite() {
+                a0 = a0.max(on);
+            }
+        }
+    }
+    (a1 > a0).then_some((a0, a1))
 }
 
 /// Pieces of one line with the gaps under [`MERGE_GAP_M`] closed, into `out` (cleared first).
@@ -445,6 +573,78 @@ mod tests {
     use super::*;
     use geo::{polygon, Contains, Point};
     use std::f64::consts::FRAC_PI_2;
+
+    fn north(width: f64) -> SwathSettings {
+        SwathSettings {
+            bearing: 0.0,
+            width,
+            min_length: width,
+            placement: LinePlacement::FromEdge,
+        }
+    }
+
+    #[test]
+    fn strips_within_end_where_a_slanted_end_lets_both_edges_in() {
+        // A 36 m strip, its south end slanting down 1 m per 2 m east: y = -x/2 along it.
+        let field =
+            polygon![(x: 0., y: 0.), (x: 36., y: -18.), (x: 36., y: 200.), (x: 0., y: 200.)];
+        let area = MultiPolygon::new(vec![field.clone()]);
+        let within = generate_within(&area, &north(12.0)).unwrap();
+        let plain = generate_with(&area, &north(12.0)).unwrap();
+        assert_eq!(within.swaths.len(), plain.swaths.len());
+        for (w, p) in within.swaths.iter().zip(&plain.swaths) {
+            // The centre line starts at y = -c/2, the strip's east edge at -(c + 6)/2 and its
+            // west edge at -(c - 6)/2: the strip fits from the west edge's y on.
+            let c = w.across;
+            assert!((p.along.0 + c / 2.0).abs() < 1e-9, "{c}: {:?}", p.along);
+            assert!(
+                (w.along.0 + (c - 6.0) / 2.0).abs() < 1e-2,
+                "{c}: {:?}",
+                w.along
+            );
+            assert_eq!(w.along.1, p.along.1);
+            // Both corners of the strip's south end are in the field (1 mm in).
+            for side in [-5.999, 5.999] {
+                let corner = w.frame.point(c + side, w.along.0 + 1e-6);
+                assert!(field.contains(&Point::from(corner)), "{c}{side:+}");
+            }
+        }
+    }
+
+    #[test]
+    fn strips_within_keep_their_length_beside_a_side_not_parallel_to_them() {
+        // A strip 36 m wide at its foot and 37 m at its head: the outer swaths' edges leave the
+        // field along the east side, not across the ends, which are square.
+        let field = polygon![(x: 0., y: 0.), (x: 36., y: 0.), (x: 37., y: 200.), (x: 0., y: 200.)];
+        let area = MultiPolygon::new(vec![field]);
+        let within = generate_within(&area, &north(12.0)).unwrap();
+        let plain = generate_with(&area, &north(12.0)).unwrap();
+        let along = |s: &Swaths| s.swaths.iter().map(|w| w.along).collect::<Vec<_>>();
+        assert_eq!(along(&within), along(&plain));
+    }
+
+    #[test]
+    fn a_piece_the_trimming_would_leave_too_short_stays_whole() {
+        let piece = (0.0, 10.0);
+        // The west edge is inside only over 8..10 near the end: trimmed to 8..10, shorter
+        // than a minimum of 6 m, so generate_within keeps the piece whole (trim_ends says 8..10).
+        assert_eq!(
+            trim_ends(piece, &[(8.0, 10.0)], &[(0.0, 10.0)], 12.0),
+            Some((8.0, 10.0))
+        );
+        // Both edges inside at both ends: untouched.
+        assert_eq!(
+            trim_ends(piece, &[(0.0, 10.0)], &[(-1.0, 11.0)], 12.0),
+            Some(piece)
+        );
+        // An edge inside only far from both ends (beyond the reach): untouched.
+        assert_eq!(
+            trim_ends((0.0, 100.0), &[(40.0, 50.0)], &[(0.0, 100.0)], 12.0),
+            Some((0.0, 100.0))
+        );
+        // Edges that leave nothing between them.
+        assert_eq!(trim_ends(piece, &[(0.0, 3.0)], &[(7.0, 10.0)], 12.0), None);
+    }
 
     #[test]
     fn leftover_strip_gets_an_overlapping_swath() {

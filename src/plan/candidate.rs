@@ -18,7 +18,9 @@ use crate::options::PlanOptions;
 use crate::path::{build_path, Path};
 use crate::prohibited::{forbidding, split};
 use crate::route::{plan_route, plan_route_on, Route, RouteSettings};
-use crate::swath::{generate_with, lifts, LinePlacement, Swath, SwathArea, SwathSettings, Swaths};
+use crate::swath::{
+    generate_with, generate_within, lifts, LinePlacement, Swath, SwathArea, SwathSettings, Swaths,
+};
 use geo::{Area, BooleanOps};
 use web_time::Instant;
 
@@ -432,7 +434,8 @@ pub(super) fn single_direction(
             &options.forbidden_bearings_deg,
         )
     };
-    let main = generate_with(
+    let main = swaths_of(
+        options,
         &main_area,
         &SwathSettings {
             bearing,
@@ -499,7 +502,8 @@ fn area_swaths(
     region: Option<usize>,
     options: &PlanOptions,
 ) -> Result<Swaths, PlanError> {
-    let mut own = generate_with(
+    let mut own = swaths_of(
+        options,
         &area,
         &SwathSettings {
             bearing,
@@ -527,6 +531,21 @@ fn no_swaths(bearing: f64, width: f64) -> Swaths {
         dropped: 0,
         lifts: Vec::new(),
         areas: Vec::new(),
+    }
+}
+
+/// The swaths of `area`: where the field has no headland (no passes asked for, or none fit),
+/// they end at the boundary itself, and only where the implement's whole strip is inside
+/// ([`generate_within`]); else they end on the inner field's edge, the headland beyond.
+fn swaths_of(
+    options: &PlanOptions,
+    area: &geo::MultiPolygon,
+    settings: &SwathSettings,
+) -> Result<Swaths, PlanError> {
+    if options.headland_passes == 0 {
+        generate_within(area, settings)
+    } else {
+        generate_with(area, settings)
     }
 }
 
