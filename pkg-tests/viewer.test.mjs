@@ -72,13 +72,23 @@ test("viewer: loads, draws, re-plans, switches fields, survives errors", { timeo
     await ready(page);
     assert.match(await page.textContent("#summary"), /auto/);
 
-    // A planner error is shown in words, the page keeps working, and a good value recovers.
+    // More headland passes than the field holds: planned with as many as leave it swaths, and
+    // the warning says so.
     await setInput(page, "headlandPasses", 50);
+    await ready(page);
+    const reduced = await page.evaluate(() => window.furrow.plan.warnings.map((w) => w.code));
+    assert.ok(reduced.includes("headland_passes_reduced"), `warnings: ${reduced}`);
+    assert.ok(Number((await dataset(page)).swathCount) > 0);
+    await setInput(page, "headlandPasses", passes);
+    await ready(page);
+
+    // A planner error is shown in words, the page keeps working, and a good value recovers.
+    await setInput(page, "turnRadius", 500);
     await page.waitForSelector("body[data-plan-state=error]", { timeout: 10_000 });
     const message = await page.textContent("#map-message");
-    assert.match(message, /headland/i, `error message: ${message}`);
+    assert.match(message, /turnRadius|radius/i, `error message: ${message}`);
     assert.ok(await page.isVisible("#map-message"), "the error is visible on the page");
-    assert.equal(await page.getAttribute("#headlandPasses", "aria-invalid"), "true");
+    assert.equal(await page.getAttribute("#turnRadius", "aria-invalid"), "true");
     await setInput(page, "width", "");
     assert.match(await page.textContent("#map-message"), /number/i);
     await page.click("#suggested");
