@@ -332,11 +332,14 @@ test("viewer: obstacle classes, lifted swaths, headland only where needed", { ti
     assert.match(await dd("uncovered_headland_area_m2").innerText(), /^\d[\d,.]* (m²|ha)$/);
     assert.match(await dd("headland_area_m2").innerText(), /^\d[\d,.]* ha$/);
     assert.match(await dd("lifted_distance_m").innerText(), /^\d+ m$/);
-    // Coverage: the figure against the reachable limit, the parts left standing drawn in red.
+    // Coverage: the figure against the reachable limit, the parts left standing drawn in violet;
+    // what is worked outside the field shown where there is any.
     const cov = plan.summary.coverage;
     const pct = (x) => (x * 100).toFixed(1);
     assert.equal(await dd("coverage").innerText(), `${pct(cov.coverage_ratio)} % of ${pct(cov.reachable_ratio)} % reachable`);
     assert.match(await dd("uncovered_area_m2").innerText(), /^\d[\d,.]* (m²|ha)$/);
+    assert.equal(await dd("outside_area_m2").count(), cov.outside_area_m2 > 0 ? 1 : 0);
+    if (cov.outside_area_m2 > 0) assert.match(await dd("outside_area_m2").innerText(), /^\d[\d,.]* (m²|ha)$/);
     const parts = await page.evaluate(() => window.furrow.plan.features.filter((f) => f.properties.kind === "uncovered").length);
     assert.ok(parts > 0, "the plan leaves some crop standing round the obstacles");
     assert.equal(await page.evaluate(() => window.furrow.view.drawn.uncovered), parts, "each part drawn");

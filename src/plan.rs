@@ -144,7 +144,7 @@ pub fn plan_geojson(text: &str, options: &PlanOptions) -> Result<Plan, PlanError
 ///
 /// Where the headland passes asked for leave no inner field for swaths (the field is refused,
 /// or planned without a swath), the field is planned again with each smaller number of passes
-/// down to none, and the plan that covers most is kept ([`fewer_passes`]).
+/// down to none, and the plan that works most of it is kept ([`fewer_passes`]).
 pub(crate) fn plan_stages(
     field: Field,
     options: &PlanOptions,
@@ -177,14 +177,15 @@ pub(crate) fn plan_stages(
     }
 }
 
-/// Whether plan `a` covers a larger share of the field than `b`.
+/// Whether plan `a` works more of the field than `b`, less what it works outside the field.
 fn covers_more(a: &Plan, b: &Plan) -> bool {
-    a.summary.coverage.coverage_ratio > b.summary.coverage.coverage_ratio + 1e-9
+    let net = |p: &Plan| p.summary.coverage.covered_area_m2 - p.summary.coverage.outside_area_m2;
+    net(a) > net(b) + 1e-6
 }
 
 /// The plan, of those with fewer headland passes than `options` asks for (down to none), that
-/// covers the largest share of the field (ties to more passes), with a warning of the passes
-/// laid; `None` if none plans or covers anything.
+/// works most of the field less what it works outside (ties to more passes), with a warning of
+/// the passes laid; `None` if none plans or covers anything.
 fn fewer_passes(field: &Field, options: &PlanOptions, warnings: &[Warning]) -> Option<Plan> {
     let asked = options.headland_passes;
     let mut best: Option<Plan> = None;

@@ -56,7 +56,7 @@ export function renderSummary(s, options, callMs) {
             {
               key: "coverage",
               cls: "total",
-              title: "The field worked by the implement, and the most a strip of its width can reach (the parts left standing are drawn in red)",
+              title: "The field worked by the implement, and the most a strip of its width can reach (the parts left standing are drawn in violet)",
             },
           ],
           [
@@ -69,6 +69,18 @@ export function renderSummary(s, options, callMs) {
             `${formatNumber(num(s.coverage.overlap_ratio) * 100, 1)} %`,
             { key: "overlap_ratio", title: "Area worked twice or more, over the field area" },
           ],
+          ...(num(s.coverage.outside_area_m2) > 0
+            ? [
+                [
+                  "Worked outside",
+                  area(s.coverage.outside_area_m2),
+                  {
+                    key: "outside_area_m2",
+                    title: "The implement's strip past the boundary or over an obstacle (outer swaths of a field without headland along a side not parallel to them)",
+                  },
+                ],
+              ]
+            : []),
         ]
       : []),
     ["Field area", ha(s.field_area_m2), { key: "field_area_m2" }],

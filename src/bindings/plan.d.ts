@@ -409,6 +409,12 @@ export interface CoverageSummary {
   overlap_ratio: number;
   /** Area left standing, square metres. */
   uncovered_area_m2: number;
+  /**
+   * Area worked outside the field or over an obstacle, square metres: the implement's strip past
+   * the boundary (outer swaths of a field worked without headland, along a side not parallel to
+   * them), or over an obstacle it is not lifted over.
+   */
+  outside_area_m2: number;
   /** The side of the grid's cells, metres. */
   resolution_m: number;
 }

@@ -56,6 +56,10 @@ pub struct Coverage {
     pub overlap_ratio: f64,
     /// Area left standing, square metres.
     pub uncovered_area_m2: f64,
+    /// Area worked outside the field or over an obstacle, square metres: the implement's strip
+    /// past the boundary (the outer swaths of a field worked without headland, along a side not
+    /// parallel to them), or over an obstacle it is not lifted over.
+    pub outside_area_m2: f64,
     /// The side of the grid's cells, metres: the figures' resolution.
     pub resolution_m: f64,
     /// The parts of the field left standing that are larger than the tolerance, largest first.
@@ -105,11 +109,25 @@ pub fn measure(
     if !width.is_finite() || width <= 0.0 {
         return Coverage::default();
     }
-    let grid = Grid::over(bounds, width / CELLS_PER_WIDTH, MAX_CELLS);
+    // Half a width round the field, so that the grid holds every strip that reaches past it.
+    let half = width / 2.0;
+    let around = geo::Rect::new(
+        Coord {
+            x: bounds.min().x - half,
+            y: bounds.min().y - half,
+        },
+        Coord {
+            x: bounds.max().x + half,
+            y: bounds.max().y + half,
+        },
+    );
+    let grid = Grid::over(around, width / CELLS_PER_WIDTH, MAX_CELLS);
     let field = field_cells(&grid, boundary, obstacles);
-    let counts = worked_counts(&grid, &field, worked, width);
+    let (counts, outside) = worked_counts(&grid, &field, worked, width);
     let reachable = reachable_cells(&grid, boundary, obstacles, &field, &counts, width / 2.0);
-    figures(&grid, &field, &counts, &reachable, width)
+    let mut coverage = figures(&grid, &field, &counts, &reachable, width);
+    coverage.outside_area_m2 = outside as f64 * grid.cell_area();
+    coverage
 }
 
 /// The coverage of a plan's path over its field (less all its obstacles, those lifted over
@@ -172,15 +190,27 @@ fn field_cells(grid: &Grid, boundary: &Polygon, obstacles: &[Polygon]) -> Vec<bo
 }
 
 /// How many worked lines sweep each cell of the field (each line counted once per cell, however
-/// often it comes back over it).
-fn worked_counts(grid: &Grid, field: &[bool], worked: &[Vec<Coord>], width: f64) -> Vec<u8> {
+/// often it comes back over it), and how many cells off the field they sweep.
+fn worked_counts(
+    grid: &Grid,
+    field: &[bool],
+    worked: &[Vec<Coord>],
+    width: f64,
+) -> (Vec<u8>, usize) {
     let half = width / 2.0;
     let mut counts = vec![0u8; grid.len()];
     let mut last = vec![u32::MAX; grid.len()];
+    let mut off_field = vec![false; grid.len()];
+    let mut outside = 0;
     for (k, line) in worked.iter().enumerate() {
         let k = k as u32;
         let mut mark = |i: usize| {
-            if field[i] && last[i] != k {
+            if !field[i] {
+                if !off_field[i] {
+                    off_field[i] = true;
+                    outside += 1;
+                }
+            } else if last[i] != k {
                 last[i] = k;
                 counts[i] = counts[i].saturating_add(1);
             }
@@ -195,7 +225,7 @@ fn worked_counts(grid: &Grid, field: &[bool], worked: &[Vec<Coord>], width: f64)
             }
         }
     }
-    counts
+    (counts, outside)
 }
 
 /// The angle (radians, unsigned) the line turns at `b` on its way from `a` to `c`.
@@ -250,6 +280,7 @@ fn figures(grid: &Grid, field: &[bool], counts: &[u8], reachable: &[bool], width
         reachable_ratio: ratio(reach),
         overlap_ratio: ratio(twice),
         uncovered_area_m2: (field_area - covered).greater(0.0),
+        outside_area_m2: 0.0,
         resolution_m: grid.cell,
         uncovered,
     }
@@ -308,6 +339,29 @@ mod tests {
         );
         assert_eq!(c.uncovered.len(), 1);
         assert!(c.uncovered[0].reachable_m2 < c.uncovered[0].area_m2 - 150.0);
+    }
+
+    #[test]
+    fn a_strip_past_the_boundary_or_over_an_obstacle_is_worked_outside() {
+        // A 12 x 100 m field: one swath at x = 3 inside, one at x = 11 whose strip reaches 2 m
+        // past the east side (200 m²), and a 2 x 10 m obstacle under the first one's strip.
+        let field = polygon![(x: 0., y: 0.), (x: 12., y: 0.), (x: 12., y: 100.), (x: 0., y: 100.)];
+        let pole = polygon![(x: 1., y: 40.), (x: 3., y: 40.), (x: 3., y: 50.), (x: 1., y: 50.)];
+        let worked = vec![
+            vec![coord! { x: 3.0, y: 0.0 }, coord! { x: 3.0, y: 100.0 }],
+            vec![coord! { x: 11.0, y: 0.0 }, coord! { x: 11.0, y: 100.0 }],
+        ];
+        let c = measure(&field, &[pole], &worked, 6.0);
+        // Exact to a row of cells round each part.
+        let slack = c.resolution_m * 2.0 * (100.0 + 2.0 + 10.0 + 2.0);
+        assert!(
+            (c.outside_area_m2 - 220.0).abs() <= slack,
+            "{}",
+            c.outside_area_m2
+        );
+        // Inside alone: nothing outside.
+        let inside = measure(&field, &[], &worked[..1], 6.0);
+        assert_eq!(inside.outside_area_m2, 0.0);
     }
 
     #[test]
