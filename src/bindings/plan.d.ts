@@ -391,7 +391,7 @@ export interface PlanSummary {
  * Coverage: the strip of the implement's width along every stretch worked (swaths, headland
  * passes; not turns, connections or stretches lifted over an obstacle), against the field less
  * its obstacles. Measured on a grid of cells `resolution_m` across (a sixth of the working width,
- * coarser on large fields). The crop left standing is in the features of kind `uncovered`.
+ * at most 1 m; coarser on large fields). The crop left standing is in the features of kind `uncovered`.
  */
 export interface CoverageSummary {
   /** The field less its obstacles, square metres. */

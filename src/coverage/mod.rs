@@ -8,8 +8,8 @@
 //! working width across (a strip never reaches into a corner sharper than a right angle or a
 //! neck narrower than itself).
 //!
-//! Measured on a grid ([`raster`]) of cells a sixth of the working width across (coarser on
-//! large fields, so that the grid holds at most [`MAX_CELLS`]): the field, the strips as driven
+//! Measured on a grid ([`raster`]) of cells a sixth of the working width across, at most
+//! [`MAX_CELL_M`] (coarser on large fields, so that the grid holds at most [`MAX_CELLS`]): the field, the strips as driven
 //! and the field opened by the implement's half width ([`crate::headland::offset::open`]) are
 //! drawn on it. The figures are exact to a fraction of a cell along each outline; the crop left
 //! standing is given as polygons ([`outline`]) of the parts larger than a quarter of a working
@@ -35,6 +35,10 @@ pub const MAX_CELLS: usize = 500_000;
 
 /// Cells across one working width.
 pub const CELLS_PER_WIDTH: f64 = 6.0;
+
+/// The largest cell a field within [`MAX_CELLS`] gets, metres: a wide implement's sixth of a
+/// width (4 m at 24 m) would misjudge a small field's area by several per cent.
+pub const MAX_CELL_M: f64 = 1.0;
 
 /// Turns at a point of a worked line sharper than this (radians) get the implement's sweep round
 /// the point, as it swings round the turn.
@@ -121,7 +125,7 @@ pub fn measure(
             y: bounds.max().y + half,
         },
     );
-    let grid = Grid::over(around, width / CELLS_PER_WIDTH, MAX_CELLS);
+    let grid = Grid::over(around, (width / CELLS_PER_WIDTH).min(MAX_CELL_M), MAX_CELLS);
     let field = field_cells(&grid, boundary, obstacles);
     let (counts, outside) = worked_counts(&grid, &field, worked, width);
     let reachable = reachable_cells(&grid, boundary, obstacles, &field, &counts, width / 2.0);
