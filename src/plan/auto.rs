@@ -118,6 +118,14 @@ pub(super) fn work_candidates(
             candidates.push(work(prep, m, None, same_as, times)?);
         }
     }
+    // `choose` picks among them: there must be one (split and merge always gives a plan from
+    // its first seed, or an error).
+    if candidates.is_empty() {
+        return Err(PlanError::new(
+            ErrorCode::Internal,
+            "no decomposition gave a plan",
+        ));
+    }
     Ok(candidates)
 }
 
