@@ -450,15 +450,17 @@ fn generate_lines(
     })
 }
 
+/// The pieces inside an area of the left and of the right edge of a swath's strip.
+type EdgePieces = (Vec<(f64, f64)>, Vec<(f64, f64)>);
+
 /// The pieces of the two edges of each line's strip inside `area` (each edge
 /// [`STRIP_EDGE_IN_M`] in from the strip's side), by line.
-#[allow(clippy::type_complexity)]
 fn strip_edges(
     frame: &SweepFrame,
     area: &MultiPolygon,
     offsets: &[f64],
     width: f64,
-) -> Vec<(Vec<(f64, f64)>, Vec<(f64, f64)>)> {
+) -> Vec<EdgePieces> {
     let half = (width / 2.0 - STRIP_EDGE_IN_M).max(0.0);
     // Both edges of every line, in the increasing order the sweep needs (the edges of a leftover
     // line and its neighbour interleave).
