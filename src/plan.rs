@@ -183,13 +183,14 @@ fn covers_more(a: &Plan, b: &Plan) -> bool {
     net(a) > net(b) + 1e-6
 }
 
-/// The plan, of those with fewer headland passes than `options` asks for (down to none), that
-/// works most of the field less what it works outside (ties to more passes), with a warning of
-/// the passes laid; `None` if none plans or covers anything.
+/// The plan with fewer headland passes than `options` asks for that works most of the field
+/// less what it works outside (ties to more passes), with a warning of the passes laid; `None`
+/// if none plans or covers anything. Two are weighed: the most passes that still leave swaths
+/// (found by halving, so that a count asked far beyond the field's room costs a few plans, not
+/// one per pass) and none.
 fn fewer_passes(field: &Field, options: &PlanOptions, warnings: &[Warning]) -> Option<Plan> {
     let asked = options.headland_passes;
-    let mut best: Option<Plan> = None;
-    for passes in (0..asked).rev() {
+    let with = |passes: u32| {
         let fewer = PlanOptions {
             headland_passes: passes,
             edge_passes: options
@@ -202,16 +203,34 @@ fn fewer_passes(field: &Field, options: &PlanOptions, warnings: &[Warning]) -> O
                 .collect(),
             ..options.clone()
         };
-        let Ok(plan) = plan_with_passes(field.clone(), &fewer, warnings.to_vec()) else {
-            continue;
-        };
-        if plan.summary.coverage.coverage_ratio > 0.0
-            && best.as_ref().is_none_or(|b| covers_more(&plan, b))
-        {
-            best = Some(plan);
+        plan_with_passes(field.clone(), &fewer, warnings.to_vec())
+            .ok()
+            .filter(|p| p.summary.swath_count > 0 && p.summary.coverage.coverage_ratio > 0.0)
+    };
+    // The most passes below `asked` that leave swaths: in (lo, hi], with the plan at `lo`.
+    let (mut lo, mut hi) = (0, asked.saturating_sub(1));
+    let mut most: Option<Plan> = None;
+    while lo < hi {
+        let mid = lo + (hi - lo).div_ceil(2);
+        match with(mid) {
+            Some(plan) => {
+                lo = mid;
+                most = Some(plan);
+            }
+            None => hi = mid - 1,
         }
     }
-    let mut plan = best?;
+    let none = with(0);
+    let mut plan = match (most, none) {
+        (Some(m), Some(n)) => {
+            if covers_more(&n, &m) {
+                n
+            } else {
+                m
+            }
+        }
+        (m, n) => m.or(n)?,
+    };
     plan.warnings.push(Warning::new(
         WarningCode::HeadlandPassesReduced,
         format!(
