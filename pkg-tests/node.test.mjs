@@ -282,7 +282,9 @@ test("shortest paths along the tracks: TrackGraph and shortestPath of furrow/tra
     assert.equal(path.type, "Feature");
     assert.equal(path.properties.turning, turning);
     assert.ok(path.geometry.coordinates.length >= 2);
-    assert.ok(path.properties.start_offset_m < 0.01, "the start is on a track");
+    // The middle of the ends' longitudes and latitudes lies a few centimetres off a long swath
+    // in the plan's projection (2.4 cm for this one of 679 m).
+    assert.ok(path.properties.start_offset_m < 0.05, `the start is on a track: ${path.properties.start_offset_m} m off`);
     lengths[turning] = path.properties.length_m;
   }
   assert.ok(lengths["on-the-spot"] > 0 && lengths["on-the-spot"] <= lengths.heading, JSON.stringify(lengths));

@@ -18,10 +18,11 @@
 //! from ([`crate::headland::build`]); A obstacles are not.
 
 use crate::field::Field;
+use crate::geometry::BooleanOps;
 use crate::geometry::{point_segment_distance, polygons_within, IndexedSegment, SweepFrame};
 use crate::headland::offset::drop_slivers;
 use crate::sort::SharedSort;
-use geo::{BooleanOps, BoundingRect, ConvexHull, Coord, MultiPolygon, Polygon};
+use geo::{BoundingRect, ConvexHull, Coord, MultiPolygon, Polygon};
 use rstar::{Envelope, RTree, RTreeObject, AABB};
 use serde::Serialize;
 use std::cmp::Reverse;

@@ -9,7 +9,8 @@
 
 use crate::field::ProhibitedRegion;
 use crate::geometry::BearingRange;
-use geo::{Area, BooleanOps, BoundingRect, Intersects, MultiPolygon};
+use crate::geometry::BooleanOps;
+use geo::{Area, BoundingRect, Intersects, MultiPolygon};
 
 /// Area (square metres) under which an overlap of a region with another is taken for a touch.
 const TOUCH_AREA_M2: f64 = 1e-2;

@@ -224,3 +224,45 @@ proptest! {
         check(&text, &options)?;
     }
 }
+
+/// A case of the long property run: split and merge took a block whose outline passes through
+/// the point where two parts of the rest of the field touch, and subtracting it failed an index
+/// in the hole binding of i_overlay 4.5 (the version geo 0.33 uses).
+#[test]
+fn a_block_through_the_point_where_two_parts_touch_is_taken_out() {
+    let radii = [
+        159.7601605662038,
+        94.67913801557046,
+        136.2699300578588,
+        259.903264665203,
+        148.2550480696873,
+        280.0254682184934,
+        313.07075957525507,
+        148.83102707550827,
+        354.394538100924,
+        197.6136558680123,
+        245.0028060693773,
+        221.92867153458658,
+        286.23805025070254,
+        261.2942703685525,
+        102.82346434272648,
+        398.90583248131674,
+        106.24711786725703,
+    ]
+    .map(|r| r * 10.0);
+    let text = format!(
+        r#"{{"type":"Polygon","coordinates":[{}]}}"#,
+        ring_json(&star(0.0, 46.456560200061894, &radii))
+    );
+    let options = PlanOptions {
+        width: 8.39364235456811,
+        headland_passes: 0,
+        turn_radius: 0.0,
+        search_step_deg: 7.0,
+        ..PlanOptions::default()
+    };
+    let plan = plan_geojson(&text, &options).expect("the star is a field to plan");
+    assert!(plan.summary.swath_count > 0);
+    let coverage = plan.summary.coverage.coverage_ratio;
+    assert!(coverage > 0.95, "{coverage}");
+}

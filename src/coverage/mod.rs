@@ -19,13 +19,14 @@ pub mod outline;
 pub mod raster;
 
 use crate::field::Field;
+use crate::geometry::BooleanOps;
 use crate::geometry::Extremes;
 use crate::headland::offset::open;
 use crate::path::Path;
 use crate::route::{Route, RouteStep};
 use crate::sort::SharedSort;
 use crate::swath::Swaths;
-use geo::{BooleanOps, BoundingRect, Coord, MultiPolygon, Polygon};
+use geo::{BoundingRect, Coord, MultiPolygon, Polygon};
 use raster::Grid;
 use serde::Serialize;
 

@@ -13,10 +13,11 @@
 
 use super::BlockArea;
 use crate::field::ProhibitedRegion;
+use crate::geometry::BooleanOps;
 use crate::geometry::{bearing_of, clip_segment, swath_direction, BearingRange};
 use crate::geometry::{Extremes, PlanarHypot};
 use crate::headland::{HeadlandPass, PassAround};
-use geo::{Area, BooleanOps, BoundingRect, Coord, Intersects, LineString, MultiPolygon, Polygon};
+use geo::{Area, BoundingRect, Coord, Intersects, LineString, MultiPolygon, Polygon};
 use std::f64::consts::PI;
 
 /// A block end within this many degrees of its swath direction needs no headland (Oksanen &

@@ -14,6 +14,7 @@ use super::split_merge::SplitMergeSettings;
 use super::BlockArea;
 use crate::decompose::block_members;
 use crate::error::PlanError;
+use crate::geometry::BooleanOps;
 use crate::geometry::PlanarSimplify;
 use crate::objective::{
     measure, measure_turns_in, turn_length, Objective, OperationTime, SwathStats,
@@ -22,7 +23,7 @@ use crate::prohibited::constraints_in;
 use crate::route::pattern::block_turning_m;
 use crate::sort::SharedSort;
 use crate::swath::{generate_with, LinePlacement, Swath, SwathSettings};
-use geo::{Area, BooleanOps, MultiPolygon};
+use geo::{Area, MultiPolygon};
 
 /// Estimated time (seconds) to work `area` as one block at swath direction `bearing`: swaths,
 /// turns and the uncovered area (estimated: the area less the strips') by [`OperationTime`],

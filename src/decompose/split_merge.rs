@@ -31,13 +31,14 @@ use crate::direction::{
 };
 use crate::error::PlanError;
 use crate::field::ProhibitedRegion;
+use crate::geometry::BooleanOps;
 use crate::geometry::{forbids_every_direction, BearingRange, SweepFrame};
 use crate::objective::{turn_length, Machine, TurnLengths};
 use crate::prohibited::{constraints_in, forbidding, split};
 use crate::route::pattern::SwathOrder;
 use crate::sort::SharedSort;
 use crate::swath::line_offsets;
-use geo::{Area, BooleanOps, BoundingRect, Intersects, MultiPolygon, Polygon};
+use geo::{Area, BoundingRect, Intersects, MultiPolygon, Polygon};
 use std::f64::consts::PI;
 
 /// Oksanen & Visala's selection criterion (2.5): weights of the block's driving efficiency, its

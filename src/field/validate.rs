@@ -9,10 +9,8 @@ use super::ring::{clean_ring, find_self_intersection, signed_area2, RingRepairs}
 use super::{BearingRange, Coordinates, Field, Obstacle, ProhibitedRegion};
 use crate::error::{ErrorCode, PlanError, Warning, WarningCode};
 use crate::geometry::forbids_every_direction;
-use crate::geometry::PlanarHypot;
-use geo::{
-    Area, BooleanOps, BoundingRect, Contains, Coord, Intersects, LineString, MultiPolygon, Polygon,
-};
+use crate::geometry::{BooleanOps, PlanarHypot};
+use geo::{Area, BoundingRect, Contains, Coord, Intersects, LineString, MultiPolygon, Polygon};
 
 /// Inputs with more vertices than this (all rings together) are refused.
 pub const MAX_VERTICES: usize = 200_000;

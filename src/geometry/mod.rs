@@ -1,12 +1,13 @@
-//! Small geometric helpers shared by the pipeline stages: compass bearings, point-to-segment
-//! distance, the planar `hypot`, `min`, `max` and `round` of the hot loops, Douglas-Peucker
-//! simplification and sleeve fitting, whether two polygons come within a distance, segments for R-trees, and sets
-//! of parallel lines clipped by polygons (the core of swath generation; one such line limited
-//! to a segment).
+//! Small geometric helpers shared by the pipeline stages: boolean operations and buffers of
+//! polygons, compass bearings, point-to-segment distance, the planar `hypot`, `min`, `max` and
+//! `round` of the hot loops, Douglas-Peucker simplification and sleeve fitting, whether two
+//! polygons come within a distance, segments for R-trees, and sets of parallel lines clipped by
+//! polygons (the core of swath generation; one such line limited to a segment).
 
 pub mod bearing;
 pub mod bearing_range;
 pub mod distance;
+pub mod overlay;
 pub mod parallel_lines;
 pub mod polygon_distance;
 pub mod round;
@@ -17,6 +18,7 @@ pub mod sleeve;
 pub use bearing::{bearing_of, deg_to_bearing, swath_direction, unit_vector};
 pub use bearing_range::{forbids_every_direction, BearingRange};
 pub use distance::{point_segment_distance, segment_foot, Extremes, PlanarHypot};
+pub use overlay::{buffer_line, buffer_region, BooleanOps};
 pub use parallel_lines::{clip_segment, SweepFrame};
 pub use polygon_distance::polygons_within;
 pub use round::round_half_away;

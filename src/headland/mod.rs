@@ -29,9 +29,9 @@ pub use edges::{EdgePasses, HeadlandMode};
 use crate::error::{ErrorCode, PlanError};
 use crate::field::Field;
 use crate::geometry::point_segment_distance;
+use crate::geometry::BooleanOps;
 use crate::geometry::PlanarHypot;
-use geo::algorithm::bool_ops::FillRule;
-use geo::{Area, BooleanOps, Coord, Euclidean, Length, LineString, MultiPolygon, Polygon};
+use geo::{Area, Coord, Euclidean, Length, LineString, MultiPolygon, Polygon};
 use offset::{drop_slivers, inset, line_band, open, outset, outset_fine};
 use serde::{Deserialize, Serialize};
 
@@ -422,7 +422,7 @@ fn keep_clear(region: &MultiPolygon, constraints: &[Constraint]) -> MultiPolygon
     if bands.is_empty() {
         return region.clone();
     }
-    drop_slivers(region.difference_with_fill_rule(&MultiPolygon::new(bands), FillRule::NonZero))
+    drop_slivers(region.difference_overlapping(&MultiPolygon::new(bands)))
 }
 
 /// Tolerance (metres) within which two constraints bind equally.

@@ -4,12 +4,12 @@
 //! Round joins are approximated by chords; their step is chosen so that no chord falls more than
 //! [`ARC_TOLERANCE_M`] short of the true arc (geo's default step leaves 4.5 cm at 9 m).
 
-use geo::algorithm::buffer::{BufferStyle, LineCap, LineJoin};
-use geo::{Area, Buffer, LineString, MultiPolygon};
+use crate::geometry::{buffer_line, buffer_region};
+use geo::{Area, LineString, MultiPolygon};
 
 /// The largest gap (metres) between a rounded corner of an offset and the true circular arc.
 /// An arc offset again keeps its chords' gap, so passes built from two offsets stay within it.
-/// The cost of geo's positive buffer grows with the number of arc points it is given, so this
+/// The cost of a positive buffer grows with the number of arc points it is given, so this
 /// is as coarse as the 1 cm the passes are held to allows.
 pub const ARC_TOLERANCE_M: f64 = 3e-3;
 /// Offset parts smaller than this (square metres) are slivers of the buffer and are dropped.
@@ -39,8 +39,7 @@ pub fn inset(region: &MultiPolygon, distance: f64) -> MultiPolygon {
     if distance <= 0.0 {
         return region.clone();
     }
-    let style = BufferStyle::new(-distance).line_join(LineJoin::Round(round_step(distance)));
-    drop_slivers(region.buffer_with_style(style))
+    drop_slivers(buffer_region(region, -distance, round_step(distance)))
 }
 
 /// [`inset`] with round joins held only to `tolerance` metres: fewer points, for an estimate
@@ -50,8 +49,7 @@ pub fn inset_coarse(region: &MultiPolygon, distance: f64, tolerance: f64) -> Mul
         return region.clone();
     }
     let step = 2.0 * (1.0 - tolerance / distance.max(tolerance)).acos();
-    let style = BufferStyle::new(-distance).line_join(LineJoin::Round(step.clamp(0.01, 1.0)));
-    drop_slivers(region.buffer_with_style(style))
+    drop_slivers(buffer_region(region, -distance, step.clamp(0.01, 1.0)))
 }
 
 /// The points within `distance` metres of `region` (a positive buffer with round joins).
@@ -59,8 +57,7 @@ pub fn outset(region: &MultiPolygon, distance: f64) -> MultiPolygon {
     if distance <= 0.0 {
         return region.clone();
     }
-    let style = BufferStyle::new(distance).line_join(LineJoin::Round(round_step(distance)));
-    drop_slivers(region.buffer_with_style(style))
+    drop_slivers(buffer_region(region, distance, round_step(distance)))
 }
 
 /// [`outset`] with arcs held to a fifth of [`ARC_TOLERANCE_M`], for outlines as drawn (no arcs
@@ -70,9 +67,7 @@ pub fn outset_fine(region: &MultiPolygon, distance: f64) -> MultiPolygon {
         return region.clone();
     }
     let step = step_within(distance, ARC_TOLERANCE_M / 5.0);
-    drop_slivers(
-        region.buffer_with_style(BufferStyle::new(distance).line_join(LineJoin::Round(step))),
-    )
+    drop_slivers(buffer_region(region, distance, step))
 }
 
 /// The points within `distance` metres of a line, with round joins and round ends.
@@ -82,10 +77,7 @@ pub fn outset_fine(region: &MultiPolygon, distance: f64) -> MultiPolygon {
 /// finer step costs little.
 pub fn line_band(line: &LineString, distance: f64) -> MultiPolygon {
     let step = step_within(distance, ARC_TOLERANCE_M / 5.0);
-    let style = BufferStyle::new(distance)
-        .line_join(LineJoin::Round(step))
-        .line_cap(LineCap::Round(step));
-    line.buffer_with_style(style)
+    buffer_line(line, distance, step)
 }
 
 /// The opening of `region` by a disc of `radius`: the union of all discs of that radius inside

@@ -9,6 +9,7 @@ use crate::decompose::{cluster_swaths, Blocks, Decomposition};
 use crate::direction::{search_area, AreaSearch, DirectionMode};
 use crate::error::{ErrorCode, PlanError, Warning, WarningCode};
 use crate::field::{Field, ProhibitedRegion};
+use crate::geometry::BooleanOps;
 use crate::geometry::{forbids_every_direction, SweepFrame};
 use crate::headland::Headlands;
 use crate::metrics::{summarise, DirectionFigures, DirectionReport, StageTimes, Summary};
@@ -21,7 +22,7 @@ use crate::route::{plan_route, plan_route_on, Route, RouteSettings};
 use crate::swath::{
     generate_with, generate_within, lifts, LinePlacement, Swath, SwathArea, SwathSettings, Swaths,
 };
-use geo::{Area, BooleanOps};
+use geo::Area;
 use web_time::Instant;
 
 /// A plan from the decomposition on.
