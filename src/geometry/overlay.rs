@@ -215,6 +215,9 @@ mod tests {
         let none = MultiPolygon::new(vec![]);
         assert!(square(0.0, 0.0, 1.0).intersection(&none).0.is_empty());
         assert!(none.difference(&square(0.0, 0.0, 1.0)).0.is_empty());
+        assert!(none.union(&none).0.is_empty());
+        assert!(buffer_region(&none, -1.0, 0.1).0.is_empty());
+        assert!(buffer_region(&none, 1.0, 0.1).0.is_empty());
     }
 
     #[test]
