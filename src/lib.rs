@@ -44,6 +44,7 @@ pub mod decompose;
 pub mod direction;
 pub mod error;
 pub mod field;
+pub mod fill;
 pub mod geometry;
 pub mod headland;
 pub mod metrics;

@@ -83,6 +83,8 @@ pub struct Summary {
     pub obstacle_classes: ClassCounts,
     /// Swath pieces shorter than the minimum swath length, left to the headland.
     pub dropped_swath_count: usize,
+    /// Of the swaths, those that work parts the others and the headland passes left standing.
+    pub fill_swath_count: usize,
     /// The swath direction as a compass bearing in degrees, in `[0, 180)`.
     pub bearing_deg: f64,
     /// How the direction was chosen.
@@ -369,6 +371,12 @@ pub fn summarise(
             d: obstacles.count(ObstacleClass::D),
         },
         dropped_swath_count: swaths.dropped,
+        fill_swath_count: swaths
+            .areas
+            .iter()
+            .filter(|a| a.fill)
+            .map(|a| a.swaths.len())
+            .sum(),
         bearing_deg: swaths.bearing.to_degrees(),
         direction,
         objectives,

@@ -5,10 +5,10 @@
 //!
 //! | kind | geometry | properties |
 //! |---|---|---|
-//! | `block` | Polygon | `index`, `order` (position in the order blocks are worked), `swath_count`, `bearing_deg`, `region` (if it lies in a prohibited region worked in its own direction) |
+//! | `block` | Polygon | `index`, `order` (position in the order blocks are worked), `swath_count`, `bearing_deg`, `region` (if it lies in a prohibited region worked in its own direction), `fill` (`true` for a block working what the others leave standing) |
 //! | `obstacle` | Polygon | `index`, `feature` (index of the input feature), `name` (if it had one), `class` (`A`-`D`), `group` (for class C: the `obstacle_group` it was merged into) |
 //! | `obstacle_group` | Polygon | `index`, `class` (`C`), `members` (indices of the obstacles merged) |
-//! | `swath` | LineString | `sequence`, `index`, `block`, `line`, `length_m`, `bearing_deg` (driving direction), `lifted` (if any: `[from, to]` metres from the swath's first point where the implement is lifted over a class A obstacle), `overlap_m` (on a line working a leftover strip: its overlap with the neighbouring strip), `region` (in a prohibited region worked in its own direction) |
+//! | `swath` | LineString | `sequence`, `index`, `block`, `line`, `length_m`, `bearing_deg` (driving direction), `lifted` (if any: `[from, to]` metres from the swath's first point where the implement is lifted over a class A obstacle), `overlap_m` (on a line working a leftover strip: its overlap with the neighbouring strip), `region` (in a prohibited region worked in its own direction), `fill` (`true` in a fill block) |
 //! | `headland` | LineString | `sequence`, `pass` (1 = nearest the boundary or obstacle), `around` (`field` or `obstacle`), `closed`, `length_m` |
 //! | `turn` | LineString | `sequence`, `block`, `length_m`, `form`, `word`, `inside` |
 //! | `connection` | LineString | `sequence`, `length_m` |
@@ -138,6 +138,9 @@ pub struct Properties {
     /// For a swath or block in a prohibited region worked in its own direction: the region.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub region: Option<usize>,
+    /// `true` for a swath or block that works a part the others left standing.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub fill: Option<bool>,
     /// Distance driven from the start of the path to the start of a drivable feature, metres.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub distance_m: Option<f64>,
@@ -200,6 +203,7 @@ impl Plan {
                     swath_count: Some(block.swaths.len()),
                     bearing_deg: Some(round(block.bearing.to_degrees(), 1e-6)),
                     region: block.swaths.first().and_then(|&s| self.region_of(s)),
+                    fill: block.swaths.first().and_then(|&s| self.fill_of(s)),
                     ..Default::default()
                 },
                 out.polygon(&block.outline),
@@ -313,6 +317,7 @@ impl Plan {
                         .filter(|s| s.overlap_m > 0.0)
                         .map(|s| round(s.overlap_m, 1e-3));
                     p.region = self.region_of(swath);
+                    p.fill = self.fill_of(swath);
                 }
                 Some(&RouteStep::HeadlandPass { pass, .. }) => {
                     if let Some(h) = self.headlands.passes.get(pass) {
@@ -354,6 +359,15 @@ impl Plan {
             .iter()
             .find(|a| a.swaths.contains(&i))
             .and_then(|a| a.region)
+    }
+
+    /// `Some(true)` if swath `i` works a part the other swaths left standing.
+    fn fill_of(&self, i: usize) -> Option<bool> {
+        self.swaths
+            .areas
+            .iter()
+            .any(|a| a.fill && a.swaths.contains(&i))
+            .then_some(true)
     }
 
     /// Where the implement is lifted along swath `i`, metres from its first point as driven.

@@ -154,7 +154,8 @@ pub(crate) fn plan_stages(
     let again = (options.headland_passes > 0).then(|| (field.clone(), warnings.clone()));
     let planned = plan_with_passes(field, options, warnings);
     let no_inner_field = match &planned {
-        Ok(plan) => plan.summary.swath_count == 0,
+        // Swaths that only fill what the passes leave are no inner field.
+        Ok(plan) => plan.summary.swath_count == plan.summary.fill_swath_count,
         Err(e) => e.code == ErrorCode::HeadlandConsumesField,
     };
     match again {
@@ -205,7 +206,10 @@ fn fewer_passes(field: &Field, options: &PlanOptions, warnings: &[Warning]) -> O
         };
         plan_with_passes(field.clone(), &fewer, warnings.to_vec())
             .ok()
-            .filter(|p| p.summary.swath_count > 0 && p.summary.coverage.coverage_ratio > 0.0)
+            .filter(|p| {
+                p.summary.swath_count > p.summary.fill_swath_count
+                    && p.summary.coverage.coverage_ratio > 0.0
+            })
     };
     // The most passes below `asked` that leave swaths: in (lo, hi], with the plan at `lo`.
     let (mut lo, mut hi) = (0, asked.saturating_sub(1));
@@ -306,15 +310,10 @@ fn plan_with_passes(
     let mut clock = Instant::now();
     let (chosen, decomposition) =
         auto::choose(candidates, options.decomposition, &methods, left_out);
-    let mut plan = assemble(field, options, obstacles, chosen, decomposition, warnings);
-    plan.summary.coverage = crate::coverage::of_plan(
-        &plan.field,
-        &plan.swaths,
-        &plan.route,
-        &plan.path,
-        options.width,
-    );
     times.lap(&mut clock, |t| &mut t.metrics);
+    let (chosen, coverage) = candidate::fill_leftovers(&prepared, chosen, &mut times)?;
+    let mut plan = assemble(field, options, obstacles, chosen, decomposition, warnings);
+    plan.summary.coverage = coverage;
     plan.summary.stages_ms = times;
     plan.warnings
         .extend(coarsened(&plan.path, options.sample_spacing));

@@ -117,6 +117,9 @@ pub struct SwathArea {
     pub region: Option<usize>,
     /// The area.
     pub area: MultiPolygon,
+    /// Whether it is a part the other areas' swaths and the headland passes left standing,
+    /// worked afterwards ([`crate::fill`]).
+    pub fill: bool,
 }
 
 /// A stretch of a swath where the implement is lifted over a small obstacle (class A) that the
@@ -342,6 +345,65 @@ pub fn generate_with(area: &MultiPolygon, settings: &SwathSettings) -> Result<Sw
 /// ```
 pub fn generate_within(area: &MultiPolygon, settings: &SwathSettings) -> Result<Swaths, PlanError> {
     generate_lines(area, settings, true)
+}
+
+/// Swaths on the lines at `offsets` (across, in the sweep frame of `bearing`, in increasing
+/// order) cut to `area`: each piece at least `min_length` long is a swath, its line numbered by
+/// its place in `offsets`. For lines placed by other means than a field's grid (the fill of
+/// what the swaths leave, see [`crate::fill`]).
+///
+/// ```
+/// use furrow::swath::on_lines;
+/// use geo::{polygon, MultiPolygon};
+///
+/// let square = MultiPolygon::new(vec![polygon![(x: 0., y: 0.), (x: 10., y: 0.), (x: 10., y: 10.), (x: 0., y: 10.)]]);
+/// let s = on_lines(&square, 0.0, 4.0, &[2.0, 8.0], 1.0);
+/// assert_eq!(s.swaths.len(), 2);
+/// assert!((s.swaths[1].centre.start.x - 8.0).abs() < 1e-9);
+/// assert!((s.swaths[1].length() - 10.0).abs() < 1e-9);
+/// ```
+pub fn on_lines(
+    area: &MultiPolygon,
+    bearing: f64,
+    width: f64,
+    offsets: &[f64],
+    min_length: f64,
+) -> Swaths {
+    let frame = SweepFrame::new(bearing);
+    let mut swaths = Vec::new();
+    let mut dropped = 0;
+    let mut merged: Vec<(f64, f64)> = Vec::new();
+    frame.clip_each(area, offsets, |line_index, line| {
+        let Some(&across) = offsets.get(line_index) else {
+            return;
+        };
+        merge_touching(line, &mut merged);
+        for &(a0, a1) in &merged {
+            if a1 - a0 < min_length.max(1e-6) {
+                dropped += 1;
+                continue;
+            }
+            swaths.push(Swath {
+                index: swaths.len(),
+                bearing,
+                frame,
+                overlap_m: 0.0,
+                line_index,
+                centre: Line::new(frame.point(across, a0), frame.point(across, a1)),
+                across,
+                along: (a0, a1),
+            });
+        }
+    });
+    Swaths {
+        bearing,
+        width,
+        frame,
+        swaths,
+        dropped,
+        lifts: Vec::new(),
+        areas: Vec::new(),
+    }
 }
 
 /// How far in from the strip's edges [`generate_within`] tests it, metres.

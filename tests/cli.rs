@@ -76,14 +76,24 @@ fn plans_the_rectangle_with_flags() {
     );
     let plan: serde_json::Value = serde_json::from_slice(&out.stdout).expect("GeoJSON on stdout");
     assert_eq!(plan["type"], "FeatureCollection");
-    assert_eq!(plan["summary"]["swath_count"], 22);
-    let swaths = plan["features"]
+    // 22 swaths across the inner field, and the fill of the four corners the passes round off.
+    let fill = plan["summary"]["fill_swath_count"]
+        .as_u64()
+        .expect("a count");
+    assert!((1..=8).contains(&fill), "{fill}");
+    assert_eq!(plan["summary"]["swath_count"].as_u64(), Some(22 + fill));
+    let swaths: Vec<&serde_json::Value> = plan["features"]
         .as_array()
         .expect("features")
         .iter()
         .filter(|f| f["properties"]["kind"] == "swath")
+        .collect();
+    assert_eq!(swaths.len() as u64, 22 + fill);
+    let filling = swaths
+        .iter()
+        .filter(|f| f["properties"]["fill"] == true)
         .count();
-    assert_eq!(swaths, 22);
+    assert_eq!(filling as u64, fill);
 }
 
 #[test]
@@ -461,7 +471,8 @@ const RECTANGLE_SOUTH_WEST: &str = "24.05,60.25";
 #[test]
 fn a_way_out_is_found_without_a_turning_option() {
     // From the middle of the rectangle facing north to its south-west corner: without turning
-    // on the spot there is a way; only along tracks as driven there is none.
+    // on the spot there is a way; only along tracks as driven (the corners' fill swaths join
+    // the swaths to the passes) there is a longer one.
     let rect = field("rectangle.geojson");
     let args = [
         rect.as_str(),
@@ -484,7 +495,20 @@ fn a_way_out_is_found_without_a_turning_option() {
         .as_f64()
         .is_some_and(|l| l > 0.0));
     let strict = run(&[&args[..], &["--turning", "tracks"]].concat());
-    assert_eq!(error_code(&strict), "no_path");
+    assert!(
+        strict.status.success(),
+        "{}",
+        String::from_utf8_lossy(&strict.stderr)
+    );
+    let strict: serde_json::Value = serde_json::from_slice(&strict.stdout).expect("a Feature");
+    assert_eq!(strict["properties"]["turning"], "tracks");
+    let length = |p: &serde_json::Value| p["properties"]["length_m"].as_f64().unwrap_or(0.0);
+    assert!(
+        length(&strict) >= length(&path),
+        "{} < {}",
+        length(&strict),
+        length(&path)
+    );
 }
 
 /// The plan's features (the summary holds the time planning took, which varies).

@@ -115,7 +115,19 @@ fn every_valid_field_plans_and_keeps_the_invariants() {
 fn check_swaths(plan: &Plan, name: &str) {
     let w = plan.options.width;
     let inner = &plan.headlands.inner;
+    let fill: Vec<std::ops::Range<usize>> = plan
+        .swaths
+        .areas
+        .iter()
+        .filter(|a| a.fill)
+        .map(|a| a.swaths.clone())
+        .collect();
+    let fills = |i: usize| fill.iter().any(|r| r.contains(&i));
     for s in &plan.swaths.swaths {
+        if fills(s.index) {
+            check_fill_swath(plan, s, name);
+            continue;
+        }
         let mid = Point((s.centre.start + s.centre.end) / 2.0);
         assert!(
             inner.contains(&mid),
@@ -159,7 +171,13 @@ fn check_swaths(plan: &Plan, name: &str) {
             let ((i, a, oa), (j, b, ob)) = (pair[0], pair[1]);
             let gap = b - a;
             let expected = (j - i) as f64 * w;
-            if oa > 0.0 || ob > 0.0 {
+            if area.fill {
+                // The fill's lines are spread over the part: no gap between their strips.
+                assert!(
+                    gap > 0.0 && gap <= expected + 1e-6,
+                    "{name}: fill lines {gap} m apart"
+                );
+            } else if oa > 0.0 || ob > 0.0 {
                 // A line moved to work a leftover strip: closer, never further.
                 assert!(
                     gap <= expected + 1e-6 && gap > 0.0,
@@ -173,6 +191,45 @@ fn check_swaths(plan: &Plan, name: &str) {
             }
         }
     }
+}
+
+/// A swath that fills what the others leave: parallel to its area, and its whole strip in the
+/// field and off every obstacle (its centre line half a width in from them, to the arcs'
+/// chords).
+fn check_fill_swath(plan: &Plan, s: &furrow::swath::Swath, name: &str) {
+    let half = plan.options.width / 2.0;
+    let boundary = &plan.field.boundary;
+    for k in 0..=10 {
+        let t = k as f64 / 10.0;
+        let p = Point(s.centre.start + (s.centre.end - s.centre.start) * t);
+        assert!(
+            boundary.contains(&p),
+            "{name}: fill swath {} leaves the field",
+            s.index
+        );
+        let to_edge = Euclidean.distance(&p, boundary.exterior());
+        assert!(
+            to_edge > half - 0.01,
+            "{name}: fill swath {}'s strip reaches {} m past the boundary",
+            s.index,
+            half - to_edge
+        );
+        for o in &plan.field.obstacles {
+            let d = Euclidean.distance(&p, &o.polygon);
+            assert!(
+                d > half - 0.01,
+                "{name}: fill swath {} over an obstacle",
+                s.index
+            );
+        }
+    }
+    let b = furrow::geometry::bearing_of(s.centre.start, s.centre.end);
+    let diff = furrow::geometry::swath_direction(b - s.bearing);
+    assert!(
+        diff.min(std::f64::consts::PI - diff) < 1e-9,
+        "{name}: fill swath {} not parallel",
+        s.index
+    );
 }
 
 /// The path is continuous, every swath and headland pass is driven once, and the GeoJSON
@@ -416,8 +473,10 @@ fn rectangle_acceptance_case() {
     use geo::BoundingRect;
     let rect = plan.field.boundary.bounding_rect().expect("bounded");
     assert!((plan.summary.bearing_deg - 90.0).abs() < 0.01);
-    assert_eq!(plan.summary.swath_count, 22);
-    for s in &plan.swaths.swaths {
+    // The field's 22 swaths, then the fill of the corners the passes round off.
+    assert_eq!(plan.summary.swath_count - plan.summary.fill_swath_count, 22);
+    assert!(plan.summary.fill_swath_count > 0);
+    for s in &plan.swaths.swaths[..22] {
         assert!(
             (s.length() - (rect.width() - 24.0)).abs() < 0.01,
             "{}",

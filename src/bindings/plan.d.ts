@@ -284,6 +284,8 @@ export interface PlanFeatureProperties {
    * the region (among the input's prohibited regions), whose own direction it follows.
    */
   region?: number;
+  /** Swaths and blocks that work a part the others left standing (corners, strips at swath ends). */
+  fill?: true;
   /** Drivable features: distance driven from the start of the path to this feature's start, metres. */
   distance_m?: number;
   /** Drivable features: time from the start of the path to this feature's start, seconds. */
@@ -364,6 +366,8 @@ export interface PlanSummary {
   /** Number of obstacles of each class. */
   obstacle_classes: ObstacleClassCounts;
   dropped_swath_count: number;
+  /** Of the swaths, those that work parts the others and the headland passes left standing. */
+  fill_swath_count: number;
   /** Swath direction, compass degrees in [0, 180): with split and merge, the first block's. */
   bearing_deg: number;
   /** How the direction was chosen. */

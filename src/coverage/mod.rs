@@ -108,31 +108,144 @@ pub fn measure(
     worked: &[Vec<Coord>],
     width: f64,
 ) -> Coverage {
-    let Some(bounds) = boundary.bounding_rect() else {
-        return Coverage::default();
-    };
-    if !width.is_finite() || width <= 0.0 {
-        return Coverage::default();
+    match Tally::new(boundary, obstacles, width) {
+        Some(mut tally) => {
+            tally.work(worked);
+            tally.coverage()
+        }
+        None => Coverage::default(),
     }
-    // Half a width round the field, so that the grid holds every strip that reaches past it.
-    let half = width / 2.0;
-    let around = geo::Rect::new(
-        Coord {
-            x: bounds.min().x - half,
-            y: bounds.min().y - half,
-        },
-        Coord {
-            x: bounds.max().x + half,
-            y: bounds.max().y + half,
-        },
-    );
-    let grid = Grid::over(around, (width / CELLS_PER_WIDTH).min(MAX_CELL_M), MAX_CELLS);
-    let field = field_cells(&grid, boundary, obstacles);
-    let (counts, outside) = worked_counts(&grid, &field, worked, width);
-    let reachable = reachable_cells(&grid, boundary, obstacles, &field, &counts, width / 2.0);
-    let mut coverage = figures(&grid, &field, &counts, &reachable, width);
-    coverage.outside_area_m2 = outside as f64 * grid.cell_area();
-    coverage
+}
+
+/// The coverage of a field as it is worked: the field and what a strip can reach drawn once on
+/// the grid, worked lines added to it as they come ([`Tally::work`]), the figures read at any
+/// time ([`Tally::coverage`]). [`measure`] in steps: the fill of what the plan leaves
+/// ([`crate::fill`]) adds its lines to the plan's.
+///
+/// ```
+/// use furrow::coverage::Tally;
+/// use geo::{coord, polygon};
+///
+/// let field = polygon![(x: 0., y: 0.), (x: 12., y: 0.), (x: 12., y: 100.), (x: 0., y: 100.)];
+/// let mut tally = Tally::new(&field, &[], 6.0).expect("a field and a width");
+/// tally.work(&[vec![coord! { x: 3.0, y: 0.0 }, coord! { x: 3.0, y: 100.0 }]]);
+/// assert!((tally.coverage().coverage_ratio - 0.5).abs() < 0.01);
+/// tally.work(&[vec![coord! { x: 9.0, y: 0.0 }, coord! { x: 9.0, y: 100.0 }]]);
+/// assert!(tally.coverage().coverage_ratio > 0.99);
+/// ```
+#[derive(Debug, Clone)]
+pub struct Tally {
+    grid: Grid,
+    width: f64,
+    /// Cells in the field and off its obstacles.
+    field: Vec<bool>,
+    /// Cells of the field opened by the implement's half width.
+    opened: Vec<bool>,
+    /// How many worked lines sweep each cell.
+    counts: Vec<u8>,
+    /// The last line counted on each cell: a line is counted once per cell.
+    last: Vec<u32>,
+    /// Cells off the field that a line sweeps.
+    off_field: Vec<bool>,
+    outside: usize,
+    lines: u32,
+}
+
+impl Tally {
+    /// An empty tally of the field `boundary` less its `obstacles` for an implement `width`
+    /// metres wide; `None` for a boundary without extent or a width that is not a positive
+    /// number.
+    pub fn new(boundary: &Polygon, obstacles: &[Polygon], width: f64) -> Option<Tally> {
+        let bounds = boundary.bounding_rect()?;
+        if !width.is_finite() || width <= 0.0 {
+            return None;
+        }
+        // Half a width round the field, so that the grid holds every strip that reaches past it.
+        let half = width / 2.0;
+        let around = geo::Rect::new(
+            Coord {
+                x: bounds.min().x - half,
+                y: bounds.min().y - half,
+            },
+            Coord {
+                x: bounds.max().x + half,
+                y: bounds.max().y + half,
+            },
+        );
+        let grid = Grid::over(around, (width / CELLS_PER_WIDTH).min(MAX_CELL_M), MAX_CELLS);
+        let field = field_cells(&grid, boundary, obstacles);
+        let opened = opened_cells(&grid, boundary, obstacles, &field, half);
+        let n = grid.len();
+        Some(Tally {
+            grid,
+            width,
+            field,
+            opened,
+            counts: vec![0; n],
+            last: vec![u32::MAX; n],
+            off_field: vec![false; n],
+            outside: 0,
+            lines: 0,
+        })
+    }
+
+    /// Adds `worked` lines (each a polyline driven with the implement down).
+    pub fn work(&mut self, worked: &[Vec<Coord>]) {
+        let half = self.width / 2.0;
+        let Tally {
+            grid,
+            field,
+            counts,
+            last,
+            off_field,
+            outside,
+            lines,
+            ..
+        } = self;
+        for line in worked {
+            let k = *lines;
+            *lines = lines.wrapping_add(1);
+            let mut mark = |i: usize| {
+                if !field[i] {
+                    if !off_field[i] {
+                        off_field[i] = true;
+                        *outside += 1;
+                    }
+                } else if last[i] != k {
+                    last[i] = k;
+                    counts[i] = counts[i].saturating_add(1);
+                }
+            };
+            for (n, w) in line.windows(2).enumerate() {
+                grid.fill_strip(w[0], w[1], half, &mut mark);
+                // The implement swings round a point where the line turns.
+                if let Some(&next) = line.get(n + 2) {
+                    if turn_angle(w[0], w[1], next) > SWING_ANGLE {
+                        grid.fill_disc(w[1], half, &mut mark);
+                    }
+                }
+            }
+        }
+    }
+
+    /// The figures of the lines added so far.
+    pub fn coverage(&self) -> Coverage {
+        let reachable: Vec<bool> = self
+            .opened
+            .iter()
+            .zip(&self.counts)
+            .map(|(&o, &c)| o || c > 0)
+            .collect();
+        let mut coverage = figures(
+            &self.grid,
+            &self.field,
+            &self.counts,
+            &reachable,
+            self.width,
+        );
+        coverage.outside_area_m2 = self.outside as f64 * self.grid.cell_area();
+        coverage
+    }
 }
 
 /// The coverage of a plan's path over its field (less all its obstacles, those lifted over
@@ -194,45 +307,6 @@ fn field_cells(grid: &Grid, boundary: &Polygon, obstacles: &[Polygon]) -> Vec<bo
     field
 }
 
-/// How many worked lines sweep each cell of the field (each line counted once per cell, however
-/// often it comes back over it), and how many cells off the field they sweep.
-fn worked_counts(
-    grid: &Grid,
-    field: &[bool],
-    worked: &[Vec<Coord>],
-    width: f64,
-) -> (Vec<u8>, usize) {
-    let half = width / 2.0;
-    let mut counts = vec![0u8; grid.len()];
-    let mut last = vec![u32::MAX; grid.len()];
-    let mut off_field = vec![false; grid.len()];
-    let mut outside = 0;
-    for (k, line) in worked.iter().enumerate() {
-        let k = k as u32;
-        let mut mark = |i: usize| {
-            if !field[i] {
-                if !off_field[i] {
-                    off_field[i] = true;
-                    outside += 1;
-                }
-            } else if last[i] != k {
-                last[i] = k;
-                counts[i] = counts[i].saturating_add(1);
-            }
-        };
-        for (n, w) in line.windows(2).enumerate() {
-            grid.fill_strip(w[0], w[1], half, &mut mark);
-            // The implement swings round a point where the line turns.
-            if let Some(&next) = line.get(n + 2) {
-                if turn_angle(w[0], w[1], next) > SWING_ANGLE {
-                    grid.fill_disc(w[1], half, &mut mark);
-                }
-            }
-        }
-    }
-    (counts, outside)
-}
-
 /// The angle (radians, unsigned) the line turns at `b` on its way from `a` to `c`.
 fn turn_angle(a: Coord, b: Coord, c: Coord) -> f64 {
     let (u, v) = (b - a, c - b);
@@ -241,14 +315,13 @@ fn turn_angle(a: Coord, b: Coord, c: Coord) -> f64 {
     cross.abs().atan2(dot)
 }
 
-/// The cells a strip of half-width `radius` can reach: those of the field opened by a disc of
-/// that radius, and those the plan works (whatever it works, it reached).
-fn reachable_cells(
+/// The cells of the field a strip of half-width `radius` can reach: those of the field opened by
+/// a disc of that radius (a plan reaches whatever it works besides).
+fn opened_cells(
     grid: &Grid,
     boundary: &Polygon,
     obstacles: &[Polygon],
     field: &[bool],
-    counts: &[u8],
     radius: f64,
 ) -> Vec<bool> {
     let region = if obstacles.is_empty() {
@@ -256,11 +329,11 @@ fn reachable_cells(
     } else {
         boundary.difference(&MultiPolygon::new(obstacles.to_vec()))
     };
-    let mut reachable: Vec<bool> = counts.iter().map(|&c| c > 0).collect();
+    let mut opened = vec![false; grid.len()];
     for polygon in &open(&region, radius).0 {
-        grid.fill_polygon(polygon, &mut |i| reachable[i] |= field[i]);
+        grid.fill_polygon(polygon, &mut |i| opened[i] |= field[i]);
     }
-    reachable
+    opened
 }
 
 fn figures(grid: &Grid, field: &[bool], counts: &[u8], reachable: &[bool], width: f64) -> Coverage {

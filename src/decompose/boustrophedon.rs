@@ -136,6 +136,7 @@ pub fn cluster_into_cells(swaths: &mut Swaths, cells: &BoustrophedonCells) {
             bearing: swaths.bearing,
             region: None,
             area: MultiPolygon::new(vec![cell.outline.clone()]),
+            fill: false,
         });
     }
     // Swaths no cell holds (none, unless the swaths were cut from another area): one more area.
@@ -151,6 +152,7 @@ pub fn cluster_into_cells(swaths: &mut Swaths, cells: &BoustrophedonCells) {
             bearing: swaths.bearing,
             region: None,
             area: MultiPolygon::new(vec![]),
+            fill: false,
         });
     }
     for l in &mut swaths.lifts {

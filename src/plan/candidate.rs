@@ -2,6 +2,7 @@
 //! and headlands) through its swaths, route and path to its metrics.
 
 use super::{route_settings, Prepared, DECOMPOSITION_TOLERANCE};
+use crate::coverage::{worked_lines, Coverage, Tally};
 use crate::decompose::block_headlands::cut_block_headlands;
 use crate::decompose::boustrophedon::{self, cluster_into_cells};
 use crate::decompose::split_merge::SplitMerge;
@@ -9,8 +10,10 @@ use crate::decompose::{cluster_swaths, Blocks, Decomposition};
 use crate::direction::{search_area, AreaSearch, DirectionMode};
 use crate::error::{ErrorCode, PlanError, Warning, WarningCode};
 use crate::field::{Field, ProhibitedRegion};
+use crate::fill::{fill, FillSettings};
 use crate::geometry::BooleanOps;
 use crate::geometry::{forbids_every_direction, SweepFrame};
+use crate::headland::offset::inset;
 use crate::headland::Headlands;
 use crate::metrics::{summarise, DirectionFigures, DirectionReport, StageTimes, Summary};
 use crate::objective::{measure_all, Machine, ObjectiveValues};
@@ -104,6 +107,126 @@ pub(super) fn work(
     })
 }
 
+/// Fills what the chosen candidate leaves standing ([`crate::fill`]): the fill's swaths join
+/// its swaths as blocks of their own, and the plan is routed, pathed and measured again. Gives
+/// the plan with the coverage of its path.
+pub(super) fn fill_leftovers(
+    prep: &Prepared,
+    worked: Worked,
+    times: &mut StageTimes,
+) -> Result<(Worked, Coverage), PlanError> {
+    let mut clock = Instant::now();
+    let options = prep.options;
+    let width = options.width;
+    let obstacles: Vec<geo::Polygon> = prep
+        .field
+        .obstacles
+        .iter()
+        .map(|o| o.polygon.clone())
+        .collect();
+    let Some(mut tally) = Tally::new(&prep.field.boundary, &obstacles, width) else {
+        return Ok((worked, Coverage::default()));
+    };
+    tally.work(&worked_lines(&worked.swaths, &worked.route, &worked.path));
+    let before = tally.coverage();
+    let settings = FillSettings {
+        width,
+        bearing: worked.swaths.bearing,
+        forbidden: &options.forbidden_bearings_deg,
+        regions: &prep.field.prohibited,
+    };
+    let pieces = if before.uncovered.is_empty() {
+        Vec::new()
+    } else {
+        fill(
+            &before.uncovered,
+            &strip_centres(prep.field, width),
+            &settings,
+        )
+    };
+    times.lap(&mut clock, |t| &mut t.metrics);
+    if pieces.is_empty() {
+        return Ok((worked, before));
+    }
+    let Worked {
+        method,
+        headlands,
+        mut swaths,
+        summary,
+        mut warnings,
+        decomposition_evaluations,
+        block_headland_passes,
+        machine,
+        ..
+    } = worked;
+    let first = swaths.swaths.len();
+    for p in pieces {
+        swaths.append(p);
+    }
+    let fill_lines: Vec<Vec<geo::Coord>> = swaths.swaths[first..]
+        .iter()
+        .map(|s| vec![s.centre.start, s.centre.end])
+        .collect();
+    tally.work(&fill_lines);
+    let blocks = cluster_swaths(&swaths);
+    let laid = Laid {
+        headlands,
+        swaths,
+        warnings: Vec::new(),
+        evaluations: summary.direction.evaluations,
+        decomposition_evaluations,
+        block_headland_passes,
+    };
+    let route = route_candidate(prep, &laid, &blocks, None);
+    times.lap(&mut clock, |t| &mut t.route);
+    let path = build_path(
+        &route,
+        &laid.swaths,
+        &laid.headlands.passes,
+        &options.vehicle(),
+        Some(&prep.area),
+    );
+    times.lap(&mut clock, |t| &mut t.path);
+    warnings.retain(|w| {
+        !matches!(
+            w.code,
+            WarningCode::StraightConnections | WarningCode::TurnLeavesField
+        )
+    });
+    warnings.extend(straight_connections(&route));
+    warnings.extend(turns_leaving(&path, options));
+    let summary = measure(prep, &laid, &blocks, &route, &path, machine);
+    let after = tally.coverage();
+    times.lap(&mut clock, |t| &mut t.metrics);
+    let filled = Worked {
+        method,
+        headlands: laid.headlands,
+        swaths: laid.swaths,
+        blocks,
+        route,
+        path,
+        shares_path: false,
+        summary,
+        warnings,
+        decomposition_evaluations,
+        block_headland_passes,
+        machine,
+    };
+    Ok((filled, after))
+}
+
+/// Where the centre line of a strip of `width` may run: the field less all its obstacles, inset
+/// by half a width.
+fn strip_centres(field: &Field, width: f64) -> geo::MultiPolygon {
+    let mut region = geo::MultiPolygon::new(vec![field.boundary.clone()]);
+    if !field.obstacles.is_empty() {
+        let obstacles: Vec<geo::Polygon> =
+            field.obstacles.iter().map(|o| o.polygon.clone()).collect();
+        region = region.difference_overlapping(&geo::MultiPolygon::new(obstacles));
+    }
+    inset(&region, width / 2.0)
+}
+
 /// A candidate's swaths, the headlands they are laid in, and what laying them found.
 struct Laid {
     /// The field's headlands, with passes round the blocks where split and merge adds them.
@@ -184,6 +307,7 @@ fn lay_single_direction(prep: &Prepared, method: Decomposition) -> Result<Laid, 
             bearing,
             region: None,
             area: single.main_area.clone(),
+            fill: false,
         });
     }
     for own in &single.regions {
@@ -518,6 +642,7 @@ fn area_swaths(
         bearing,
         region,
         area,
+        fill: false,
     });
     Ok(own)
 }

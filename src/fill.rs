@@ -1,0 +1,328 @@
+//! Filling what the swaths and headland passes leave standing: the corners their rounding
+//! leaves, the strips between swath ends and the passes, narrow parts no swath reaches.
+//!
+//! Each part left standing that is at least half a width across and that a strip of the
+//! implement's width can reach gets working pieces of its own: short swaths, a width apart,
+//! along the part's own narrowest direction (the direction of a side of its convex hull) or the
+//! field's, whichever works it with fewer pieces. A line's centre keeps half a width from the
+//! boundary and the obstacles (the whole strip stays in the field) and runs as far as its strip
+//! reaches the middle of the part's wide stretches; slivers narrower than half a width are left
+//! (a full strip over them would mostly work again what is worked). The fill's swaths are blocks of the plan like any other, ordered into the
+//! route with them; the overlap with the work around them is the price, and is reported.
+
+use crate::coverage::Uncovered;
+use crate::field::ProhibitedRegion;
+use crate::geometry::{bearing_of, swath_direction, BearingRange, BooleanOps, SweepFrame};
+use crate::headland::offset::{inset, outset};
+use crate::swath::{on_lines, SwathArea, Swaths};
+use geo::{Area, BoundingRect, ConvexHull, Intersects, MultiPolygon, Polygon};
+
+/// What the fill needs besides the parts left standing.
+#[derive(Debug, Clone, Copy)]
+pub struct FillSettings<'a> {
+    /// Working width, metres.
+    pub width: f64,
+    /// The field's swath direction, compass radians.
+    pub bearing: f64,
+    /// Driving directions forbidden everywhere.
+    pub forbidden: &'a [BearingRange],
+    /// Regions with directions of their own forbidden.
+    pub regions: &'a [ProhibitedRegion],
+}
+
+/// The least area (in working widths squared) a strip must be able to reach of a part for it to
+/// be filled; and a part must be half a width across somewhere.
+const MIN_PART_WIDTHS: f64 = 0.5;
+
+/// The swaths that work the parts of `uncovered`, one set per part that gets any (each at its
+/// own direction). `centres` is where a strip's centre line may run: the field less its
+/// obstacles, inset by half a width.
+///
+/// ```
+/// use furrow::coverage::measure;
+/// use furrow::fill::{fill, FillSettings};
+/// use furrow::headland::offset::inset;
+/// use geo::{coord, polygon, MultiPolygon};
+///
+/// // A 30 x 100 m field worked by four 6 m swaths: the last 6 m strip is filled by one more.
+/// let field = polygon![(x: 0., y: 0.), (x: 30., y: 0.), (x: 30., y: 100.), (x: 0., y: 100.)];
+/// let worked: Vec<Vec<_>> = [3.0, 9.0, 15.0, 21.0]
+///     .iter()
+///     .map(|&x| vec![coord! { x: x, y: 0.0 }, coord! { x: x, y: 100.0 }])
+///     .collect();
+/// let left = measure(&field, &[], &worked, 6.0).uncovered;
+/// let centres = inset(&MultiPolygon::new(vec![field]), 3.0);
+/// let settings = FillSettings { width: 6.0, bearing: 0.0, forbidden: &[], regions: &[] };
+/// let pieces = fill(&left, &centres, &settings);
+/// assert_eq!(pieces.len(), 1);
+/// assert_eq!(pieces[0].swaths.len(), 1);
+/// assert!((pieces[0].swaths[0].across.abs() - 27.0).abs() < 0.6);
+/// assert!(pieces[0].swaths[0].length() > 90.0);
+/// ```
+pub fn fill(
+    uncovered: &[Uncovered],
+    centres: &MultiPolygon,
+    settings: &FillSettings,
+) -> Vec<Swaths> {
+    let w = settings.width;
+    if centres.0.is_empty() || !(w > 0.0) {
+        return Vec::new();
+    }
+    uncovered
+        .iter()
+        .filter(|u| u.reachable_m2 >= MIN_PART_WIDTHS * w * w)
+        .filter_map(|u| fill_part(&u.polygon, centres, settings))
+        .collect()
+}
+
+/// The swaths of one part, at the direction that works it with the fewest pieces.
+fn fill_part(part: &Polygon, centres: &MultiPolygon, settings: &FillSettings) -> Option<Swaths> {
+    let w = settings.width;
+    let part = MultiPolygon::new(vec![part.clone()]);
+    // The part where it is at least half a width across, and where a centre line's strip reaches
+    // into that and stays in the field.
+    let core = inset(&part, w / 4.0);
+    if core.unsigned_area() <= 0.0 {
+        return None;
+    }
+    let near = outset(&core, w / 2.0 - REACH_SLACK_M);
+    let box_of = near.bounding_rect()?;
+    let nearby: Vec<Polygon> = centres
+        .0
+        .iter()
+        .filter(|p| p.bounding_rect().is_some_and(|b| b.intersects(&box_of)))
+        .cloned()
+        .collect();
+    let lanes = MultiPolygon::new(nearby).intersection(&near);
+    if lanes.unsigned_area() <= 0.0 {
+        return None;
+    }
+    let mut best: Option<Swaths> = None;
+    for bearing in directions(&core, settings) {
+        let Some(swaths) = pieces_at(&core, &lanes, bearing, w) else {
+            continue;
+        };
+        let better = best.as_ref().is_none_or(|b| {
+            swaths.swaths.len() < b.swaths.len()
+                || (swaths.swaths.len() == b.swaths.len() && length(&swaths) > length(b) + 1e-6)
+        });
+        if better {
+            best = Some(swaths);
+        }
+    }
+    let mut swaths = best?;
+    let area = strips(&swaths, w);
+    swaths.areas.push(SwathArea {
+        swaths: 0..swaths.swaths.len(),
+        bearing: swaths.bearing,
+        region: None,
+        area,
+        fill: true,
+    });
+    Some(swaths)
+}
+
+/// The area the implement works along `swaths`: their strips, `width` wide, as one region.
+fn strips(swaths: &Swaths, width: f64) -> MultiPolygon {
+    let half = width / 2.0;
+    let mut area = MultiPolygon::new(Vec::new());
+    for s in &swaths.swaths {
+        let f = s.frame;
+        let corners = [
+            f.point(s.across - half, s.along.0),
+            f.point(s.across + half, s.along.0),
+            f.point(s.across + half, s.along.1),
+            f.point(s.across - half, s.along.1),
+        ];
+        let mut ring = corners.to_vec();
+        ring.push(corners[0]);
+        let strip = Polygon::new(geo::LineString::new(ring), vec![]);
+        area = area.union(&strip);
+    }
+    area
+}
+
+/// How much short of half a width the lanes reach out from a part, metres: a strip that only
+/// touches a part's edge is not a piece.
+const REACH_SLACK_M: f64 = 0.05;
+
+fn length(s: &Swaths) -> f64 {
+    s.swaths.iter().map(|s| s.length()).sum()
+}
+
+/// The directions tried for a part that no forbidden range rules out there: the narrowest
+/// across its convex hull, and the field's.
+fn directions(part: &MultiPolygon, settings: &FillSettings) -> Vec<f64> {
+    let mut out = Vec::with_capacity(2);
+    if let Some(b) = narrowest(part) {
+        out.push(b);
+    }
+    out.push(swath_direction(settings.bearing));
+    let allowed = |b: f64| {
+        !settings.forbidden.iter().any(|r| r.forbids(b))
+            && !settings
+                .regions
+                .iter()
+                .filter(|r| r.polygon.intersects(part))
+                .any(|r| r.forbidden.iter().any(|f| f.forbids(b)))
+    };
+    out.retain(|&b| allowed(b));
+    out.dedup_by(|a, b| (*a - *b).abs() < 1e-9);
+    out
+}
+
+/// The direction of the side of `part`'s convex hull across which it is narrowest (rotating
+/// calipers), compass radians in `[0, π)`.
+fn narrowest(part: &MultiPolygon) -> Option<f64> {
+    let hull = part.convex_hull();
+    let ring = &hull.exterior().0;
+    let mut best: Option<(f64, f64)> = None;
+    for edge in ring.windows(2) {
+        let (a, b) = (edge[0], edge[1]);
+        if a == b {
+            continue;
+        }
+        let bearing = swath_direction(bearing_of(a, b));
+        let (lo, hi) = SweepFrame::new(bearing).across_extent(part)?;
+        if best.is_none_or(|(w, _)| hi - lo < w - 1e-9) {
+            best = Some((hi - lo, bearing));
+        }
+    }
+    best.map(|(_, b)| b)
+}
+
+/// The pieces of lines at `bearing` that work the part whose `core` (the part inset by a
+/// quarter width) is given: as few lines a width apart as span the part's wide extent across,
+/// spread evenly over it, each moved into the lanes' extent and cut to the lanes.
+fn pieces_at(core: &MultiPolygon, lanes: &MultiPolygon, bearing: f64, w: f64) -> Option<Swaths> {
+    let frame = SweepFrame::new(bearing);
+    let (lo, hi) = frame.across_extent(core)?;
+    let (lo, hi) = (lo - w / 4.0, hi + w / 4.0);
+    let (lane_lo, lane_hi) = frame.across_extent(lanes)?;
+    let count = (((hi - lo) / w) - 1e-6).ceil().max(1.0) as usize;
+    let mut offsets: Vec<f64> = if count == 1 {
+        vec![(lo + hi) / 2.0]
+    } else {
+        let step = (hi - lo - w) / (count - 1) as f64;
+        (0..count).map(|k| lo + w / 2.0 + k as f64 * step).collect()
+    };
+    for c in &mut offsets {
+        *c = c.clamp(lane_lo + LANE_INSIDE_M, lane_hi - LANE_INSIDE_M);
+    }
+    offsets.dedup_by(|a, b| (*a - *b).abs() < w / 2.0);
+    let swaths = on_lines(lanes, bearing, w, &offsets, (w / 2.0).max(1.0));
+    (!swaths.swaths.is_empty()).then_some(swaths)
+}
+
+/// How far inside the lanes' extent a line is kept, metres: a line on the extent itself would
+/// touch the lanes at a point.
+const LANE_INSIDE_M: f64 = 0.01;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::coverage::measure;
+    use crate::headland::offset::inset;
+    use geo::{coord, polygon, Coord};
+
+    fn settings(bearing: f64) -> FillSettings<'static> {
+        FillSettings {
+            width: 6.0,
+            bearing,
+            forbidden: &[],
+            regions: &[],
+        }
+    }
+
+    fn lines_of(s: &[Swaths]) -> Vec<Vec<Coord>> {
+        s.iter()
+            .flat_map(|s| s.swaths.iter().map(|x| vec![x.centre.start, x.centre.end]))
+            .collect()
+    }
+
+    #[test]
+    fn a_strip_across_the_swath_ends_is_worked_along_its_length() {
+        // Swaths north-south end 6 m short of the north edge: the strip left is worked east-west.
+        let field = polygon![(x: 0., y: 0.), (x: 60., y: 0.), (x: 60., y: 100.), (x: 0., y: 100.)];
+        let worked: Vec<Vec<Coord>> = (0..10)
+            .map(|i| {
+                let x = 3.0 + 6.0 * i as f64;
+                vec![coord! { x: x, y: 0.0 }, coord! { x: x, y: 94.0 }]
+            })
+            .collect();
+        let before = measure(&field, &[], &worked, 6.0);
+        assert!(before.coverage_ratio < 0.95);
+        let centres = inset(&MultiPolygon::new(vec![field.clone()]), 3.0);
+        let pieces = fill(&before.uncovered, &centres, &settings(0.0));
+        assert_eq!(pieces.len(), 1);
+        assert_eq!(pieces[0].swaths.len(), 1, "one piece along the strip");
+        assert!((pieces[0].bearing - std::f64::consts::FRAC_PI_2).abs() < 1e-6);
+        let mut all = worked.clone();
+        all.extend(lines_of(&pieces));
+        let after = measure(&field, &[], &all, 6.0);
+        // Left: the strip's ends, half a width short of the sides (3 x 6 m each).
+        assert!(
+            after.uncovered_area_m2 < 40.0,
+            "{}",
+            after.uncovered_area_m2
+        );
+        assert!(
+            before.uncovered_area_m2 > 300.0,
+            "{}",
+            before.uncovered_area_m2
+        );
+        assert!(after.outside_area_m2 < 1.0, "{}", after.outside_area_m2);
+    }
+
+    #[test]
+    fn a_forbidden_direction_is_not_used() {
+        let field = polygon![(x: 0., y: 0.), (x: 60., y: 0.), (x: 60., y: 100.), (x: 0., y: 100.)];
+        let worked: Vec<Vec<Coord>> = (0..10)
+            .map(|i| {
+                let x = 3.0 + 6.0 * i as f64;
+                vec![coord! { x: x, y: 0.0 }, coord! { x: x, y: 94.0 }]
+            })
+            .collect();
+        let before = measure(&field, &[], &worked, 6.0);
+        let centres = inset(&MultiPolygon::new(vec![field]), 3.0);
+        let east_west = [BearingRange {
+            from_deg: 80.0,
+            to_deg: 100.0,
+        }];
+        let s = FillSettings {
+            forbidden: &east_west,
+            ..settings(0.0)
+        };
+        let pieces = fill(&before.uncovered, &centres, &s);
+        assert!(pieces.iter().all(|p| p.bearing.abs() < 1e-6));
+    }
+
+    #[test]
+    fn a_field_worked_all_over_gets_nothing() {
+        let field = polygon![(x: 0., y: 0.), (x: 30., y: 0.), (x: 30., y: 100.), (x: 0., y: 100.)];
+        let worked: Vec<Vec<Coord>> = (0..5)
+            .map(|i| {
+                let x = 3.0 + 6.0 * i as f64;
+                vec![coord! { x: x, y: 0.0 }, coord! { x: x, y: 100.0 }]
+            })
+            .collect();
+        let before = measure(&field, &[], &worked, 6.0);
+        let centres = inset(&MultiPolygon::new(vec![field]), 3.0);
+        assert!(fill(&before.uncovered, &centres, &settings(0.0)).is_empty());
+    }
+
+    #[test]
+    fn a_corner_a_strip_cannot_reach_gets_nothing() {
+        // The tip of a 20 degree wedge: left standing, but no 6 m strip reaches into it.
+        let tip = polygon![(x: 0., y: 0.), (x: 10., y: 0.), (x: 10., y: 3.6)];
+        let u = Uncovered {
+            polygon: tip.clone(),
+            area_m2: tip.unsigned_area(),
+            reachable_m2: 0.0,
+        };
+        let centres = MultiPolygon::new(vec![
+            polygon![(x: 20., y: 0.), (x: 40., y: 0.), (x: 40., y: 10.), (x: 20., y: 10.)],
+        ]);
+        assert!(fill(&[u], &centres, &settings(0.0)).is_empty());
+    }
+}
