@@ -206,8 +206,15 @@ fn pieces_at(core: &MultiPolygon, lanes: &MultiPolygon, bearing: f64, w: f64) ->
         let step = (hi - lo - w) / (count - 1) as f64;
         (0..count).map(|k| lo + w / 2.0 + k as f64 * step).collect()
     };
+    // Lanes narrower than twice the margin hold one line, in their middle.
+    let (inside_lo, inside_hi) = if lane_hi - lane_lo > 2.0 * LANE_INSIDE_M {
+        (lane_lo + LANE_INSIDE_M, lane_hi - LANE_INSIDE_M)
+    } else {
+        let mid = (lane_lo + lane_hi) / 2.0;
+        (mid, mid)
+    };
     for c in &mut offsets {
-        *c = c.clamp(lane_lo + LANE_INSIDE_M, lane_hi - LANE_INSIDE_M);
+        *c = c.clamp(inside_lo, inside_hi);
     }
     offsets.dedup_by(|a, b| (*a - *b).abs() < w / 2.0);
     let swaths = on_lines(lanes, bearing, w, &offsets, (w / 2.0).max(1.0));
