@@ -7,18 +7,23 @@
 //! field's, whichever works it with fewer pieces. A line's centre keeps half a width from the
 //! boundary and the obstacles (the whole strip stays in the field) and runs as far as its strip
 //! reaches the middle of the part's wide stretches; slivers narrower than half a width are left
-//! (a full strip over them would mostly work again what is worked). The fill's swaths are blocks of the plan like any other, ordered into the
-//! route with them; the overlap with the work around them is the price, and is reported.
+//! (a full strip over them would mostly work again what is worked). A piece is laid only where
+//! the route can get to one of its ends without crossing crop (near a headland pass or a
+//! swath's track): a part with no such piece is left, to be measured as standing.
+//!
+//! The fill's swaths are blocks of the plan, worked after the field's blocks (the route reaches
+//! them along the headland and the worked swaths' tracks, see [`crate::route`]); the overlap
+//! with the work around them is the price, and is reported.
 
 use crate::coverage::Uncovered;
 use crate::field::ProhibitedRegion;
 use crate::geometry::{bearing_of, swath_direction, BearingRange, BooleanOps, SweepFrame};
 use crate::headland::offset::{inset, outset};
 use crate::swath::{on_lines, SwathArea, Swaths};
-use geo::{Area, BoundingRect, ConvexHull, Intersects, MultiPolygon, Polygon};
+use geo::{Area, BoundingRect, ConvexHull, Coord, Intersects, MultiPolygon, Polygon};
 
 /// What the fill needs besides the parts left standing.
-#[derive(Debug, Clone, Copy)]
+#[derive(Clone, Copy)]
 pub struct FillSettings<'a> {
     /// Working width, metres.
     pub width: f64,
@@ -28,6 +33,25 @@ pub struct FillSettings<'a> {
     pub forbidden: &'a [BearingRange],
     /// Regions with directions of their own forbidden.
     pub regions: &'a [ProhibitedRegion],
+    /// The shortest piece laid, metres (the plan's minimum swath length).
+    pub min_length: f64,
+    /// Whether the machine gets to a point without crossing crop once the field's swaths are
+    /// worked (near a headland pass or a swath's track): a piece is laid only where one of its
+    /// ends is such a point, so that the route reaches it and leaves it (driving back along it
+    /// from a dead end).
+    pub reachable: &'a dyn Fn(Coord) -> bool,
+}
+
+impl std::fmt::Debug for FillSettings<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("FillSettings")
+            .field("width", &self.width)
+            .field("bearing", &self.bearing)
+            .field("forbidden", &self.forbidden)
+            .field("regions", &self.regions)
+            .field("min_length", &self.min_length)
+            .finish_non_exhaustive()
+    }
 }
 
 /// The least area (in working widths squared) a strip must be able to reach of a part for it to
@@ -52,7 +76,14 @@ const MIN_PART_WIDTHS: f64 = 0.5;
 ///     .collect();
 /// let left = measure(&field, &[], &worked, 6.0).uncovered;
 /// let centres = inset(&MultiPolygon::new(vec![field]), 3.0);
-/// let settings = FillSettings { width: 6.0, bearing: 0.0, forbidden: &[], regions: &[] };
+/// let settings = FillSettings {
+///     width: 6.0,
+///     bearing: 0.0,
+///     forbidden: &[],
+///     regions: &[],
+///     min_length: 6.0,
+///     reachable: &|_| true,
+/// };
 /// let pieces = fill(&left, &centres, &settings);
 /// assert_eq!(pieces.len(), 1);
 /// assert_eq!(pieces[0].swaths.len(), 1);
@@ -65,7 +96,7 @@ pub fn fill(
     settings: &FillSettings,
 ) -> Vec<Swaths> {
     let w = settings.width;
-    if centres.0.is_empty() || !(w > 0.0) {
+    if centres.0.is_empty() || w.is_nan() || w <= 0.0 {
         return Vec::new();
     }
     uncovered
@@ -98,10 +129,16 @@ fn fill_part(part: &Polygon, centres: &MultiPolygon, settings: &FillSettings) ->
         return None;
     }
     let mut best: Option<Swaths> = None;
-    for bearing in directions(&core, settings) {
-        let Some(swaths) = pieces_at(&core, &lanes, bearing, w) else {
+    for bearing in directions(&core, &near, settings) {
+        let Some(swaths) = pieces_at(&core, &lanes, bearing, w, settings.min_length) else {
             continue;
         };
+        let reached = |s: &crate::swath::Swath| {
+            (settings.reachable)(s.centre.start) || (settings.reachable)(s.centre.end)
+        };
+        if !swaths.swaths.iter().all(reached) {
+            continue;
+        }
         let better = best.as_ref().is_none_or(|b| {
             swaths.swaths.len() < b.swaths.len()
                 || (swaths.swaths.len() == b.swaths.len() && length(&swaths) > length(b) + 1e-6)
@@ -150,9 +187,10 @@ fn length(s: &Swaths) -> f64 {
     s.swaths.iter().map(|s| s.length()).sum()
 }
 
-/// The directions tried for a part that no forbidden range rules out there: the narrowest
-/// across its convex hull, and the field's.
-fn directions(part: &MultiPolygon, settings: &FillSettings) -> Vec<f64> {
+/// The directions tried for a part that no forbidden range rules out where its pieces may run
+/// (`reach`, the part's core and half a width round it): the narrowest across its convex hull,
+/// and the field's.
+fn directions(part: &MultiPolygon, reach: &MultiPolygon, settings: &FillSettings) -> Vec<f64> {
     let mut out = Vec::with_capacity(2);
     if let Some(b) = narrowest(part) {
         out.push(b);
@@ -163,7 +201,7 @@ fn directions(part: &MultiPolygon, settings: &FillSettings) -> Vec<f64> {
             && !settings
                 .regions
                 .iter()
-                .filter(|r| r.polygon.intersects(part))
+                .filter(|r| r.polygon.intersects(reach))
                 .any(|r| r.forbidden.iter().any(|f| f.forbids(b)))
     };
     out.retain(|&b| allowed(b));
@@ -194,7 +232,13 @@ fn narrowest(part: &MultiPolygon) -> Option<f64> {
 /// The pieces of lines at `bearing` that work the part whose `core` (the part inset by a
 /// quarter width) is given: as few lines a width apart as span the part's wide extent across,
 /// spread evenly over it, each moved into the lanes' extent and cut to the lanes.
-fn pieces_at(core: &MultiPolygon, lanes: &MultiPolygon, bearing: f64, w: f64) -> Option<Swaths> {
+fn pieces_at(
+    core: &MultiPolygon,
+    lanes: &MultiPolygon,
+    bearing: f64,
+    w: f64,
+    min_length: f64,
+) -> Option<Swaths> {
     let frame = SweepFrame::new(bearing);
     let (lo, hi) = frame.across_extent(core)?;
     let (lo, hi) = (lo - w / 4.0, hi + w / 4.0);
@@ -217,7 +261,7 @@ fn pieces_at(core: &MultiPolygon, lanes: &MultiPolygon, bearing: f64, w: f64) ->
         *c = c.clamp(inside_lo, inside_hi);
     }
     offsets.dedup_by(|a, b| (*a - *b).abs() < w / 2.0);
-    let swaths = on_lines(lanes, bearing, w, &offsets, (w / 2.0).max(1.0));
+    let swaths = on_lines(lanes, bearing, w, &offsets, min_length.max(1.0));
     (!swaths.swaths.is_empty()).then_some(swaths)
 }
 
@@ -238,13 +282,50 @@ mod tests {
             bearing,
             forbidden: &[],
             regions: &[],
+            min_length: 3.0,
+            reachable: &anywhere,
         }
+    }
+
+    fn anywhere(_: Coord) -> bool {
+        true
     }
 
     fn lines_of(s: &[Swaths]) -> Vec<Vec<Coord>> {
         s.iter()
             .flat_map(|s| s.swaths.iter().map(|x| vec![x.centre.start, x.centre.end]))
             .collect()
+    }
+
+    #[test]
+    fn a_part_is_filled_only_where_the_route_can_get_to_a_piece() {
+        // A 30 x 100 m field worked by four 6 m swaths: the last strip, x 24 to 30, is left.
+        let field = polygon![(x: 0., y: 0.), (x: 30., y: 0.), (x: 30., y: 100.), (x: 0., y: 100.)];
+        let worked: Vec<Vec<Coord>> = [3.0, 9.0, 15.0, 21.0]
+            .iter()
+            .map(|&x| vec![coord! { x: x, y: 0.0 }, coord! { x: x, y: 100.0 }])
+            .collect();
+        let left = measure(&field, &[], &worked, 6.0).uncovered;
+        let centres = inset(&MultiPolygon::new(vec![field]), 3.0);
+        // Nowhere to get to: nothing is laid.
+        let nowhere = |_: Coord| false;
+        let none = FillSettings {
+            reachable: &nowhere,
+            ..settings(0.0)
+        };
+        assert!(fill(&left, &centres, &none).is_empty());
+        // Only the north end is reached (a headland pass along the north edge): the piece is
+        // laid along the strip, one end there.
+        let north = |p: Coord| p.y > 90.0;
+        let from_north = FillSettings {
+            reachable: &north,
+            ..settings(0.0)
+        };
+        let pieces = fill(&left, &centres, &from_north);
+        let lines = lines_of(&pieces);
+        assert_eq!(lines.len(), 1);
+        assert!(lines[0].iter().any(|p| north(*p)));
+        assert!((lines[0][0].x - 27.0).abs() < 0.6);
     }
 
     #[test]

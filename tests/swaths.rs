@@ -12,8 +12,8 @@ use furrow::geometry::{bearing_of, forbids_every_direction, swath_direction, Bea
 use furrow::obstacles::ObstacleClass;
 use furrow::{plan, plan_geojson, ErrorCode, Plan, PlanOptions};
 use geo::{
-    Area, BooleanOps, BoundingRect, Contains, ConvexHull, Coord, Intersects, Length, Line,
-    LineString, MultiLineString, MultiPolygon, Point, Polygon,
+    Area, BooleanOps, BoundingRect, Contains, ConvexHull, Coord, Distance, Intersects, Length,
+    Line, LineString, MultiLineString, MultiPolygon, Point, Polygon,
 };
 use proptest::prelude::*;
 use std::f64::consts::PI;
@@ -43,6 +43,41 @@ fn length_inside(line: &Line, polygon: &Polygon) -> f64 {
         .sum()
 }
 
+/// The index of the first swath that fills what the others leave (they come last).
+fn first_fill_swath(plan: &Plan) -> usize {
+    plan.swaths
+        .areas
+        .iter()
+        .filter(|a| a.fill)
+        .map(|a| a.swaths.start)
+        .min()
+        .unwrap_or(plan.swaths.swaths.len())
+}
+
+/// A swath that fills what the others leave may run anywhere in the field (in the headland's
+/// corners, say): its whole strip inside the field and off every obstacle (within 1 cm: the
+/// field inset by half a width, where its centre line may run, rounds reflex corners by chords
+/// of an arc).
+fn check_fill_swath(plan: &Plan, id: &str, line: &Line) {
+    let half = plan.options.width / 2.0;
+    let mid = Point((line.start + line.end) / 2.0);
+    assert!(plan.field.boundary.contains(&mid), "{id} leaves the field");
+    let rings = std::iter::once(&plan.field.boundary)
+        .chain(plan.field.obstacles.iter().map(|o| &o.polygon))
+        .flat_map(|p| std::iter::once(p.exterior()).chain(p.interiors()));
+    for ring in rings {
+        let d = geo::Euclidean.distance(line, ring);
+        assert!(
+            d >= half - 0.01,
+            "{id}: its strip reaches {:.3} m over the field's edge or an obstacle",
+            half - d
+        );
+    }
+    for o in &plan.field.obstacles {
+        assert!(!o.polygon.contains(&mid), "{id} runs on an obstacle");
+    }
+}
+
 /// Every invariant of the swaths of a plan; `forbidden` are the global ranges.
 fn check_swaths(plan: &Plan, name: &str) {
     let w = plan.options.width;
@@ -61,20 +96,26 @@ fn check_swaths(plan: &Plan, name: &str) {
         .filter(|(i, _)| plan.obstacles.class.get(*i) != Some(&ObstacleClass::A))
         .map(|(_, o)| &o.polygon)
         .collect();
+    let fill_from = first_fill_swath(plan);
     for s in &plan.swaths.swaths {
         let id = format!("{name}: swath {}", s.index);
-        // Inside the inner field: the midpoint inside, and no crossing of its boundary.
-        let mid = Point((s.centre.start + s.centre.end) / 2.0);
-        assert!(inner.contains(&mid), "{id} leaves the inner field");
         let line = shortened(&s.centre);
-        let bounds = line.bounding_rect();
-        for e in &edges {
-            if e.bounding_rect().intersects(&bounds) {
-                assert!(!line.intersects(e), "{id} crosses the inner field's edge");
+        if s.index >= fill_from {
+            check_fill_swath(plan, &id, &line);
+        } else {
+            // Inside the inner field: the midpoint inside, and no crossing of its boundary.
+            let mid = Point((s.centre.start + s.centre.end) / 2.0);
+            assert!(inner.contains(&mid), "{id} leaves the inner field");
+            let bounds = line.bounding_rect();
+            for e in &edges {
+                if e.bounding_rect().intersects(&bounds) {
+                    assert!(!line.intersects(e), "{id} crosses the inner field's edge");
+                }
             }
-        }
-        for hole in &holes {
-            assert!(!line.intersects(*hole), "{id} crosses an obstacle");
+            for hole in &holes {
+                assert!(!line.intersects(*hole), "{id} crosses an obstacle");
+            }
+            assert!(s.length() >= plan.options.min_swath_length_m() - 1e-9);
         }
         // Its bearing is its direction, and no range forbids it.
         let b = swath_direction(bearing_of(s.centre.start, s.centre.end));
@@ -94,11 +135,10 @@ fn check_swaths(plan: &Plan, name: &str) {
                 }
             }
         }
-        assert!(s.length() >= plan.options.min_swath_length_m() - 1e-9);
     }
     // Spacing, area by area: regular lines exactly a width apart; a leftover line closer, by its
     // overlap.
-    for area in &plan.swaths.areas {
+    for area in plan.swaths.areas.iter().filter(|a| !a.fill) {
         let mut lines: Vec<(usize, f64, f64)> = Vec::new();
         for s in &plan.swaths.swaths[area.swaths.clone()] {
             if lines.last().map(|l| l.0) != Some(s.line_index) {

@@ -106,8 +106,20 @@ impl BoustrophedonCells {
 /// Clusters the swaths (all of the cells' direction) into the cells: reorders them cell by
 /// cell, in line order within a cell, renumbers them, and replaces their areas by one area per
 /// cell (cells no swath reaches get an empty one, so that the areas still cover the field).
+/// Swaths that fill what the others leave ([`SwathArea::fill`], after the others) keep their
+/// numbers and areas, after the cells'.
 pub fn cluster_into_cells(swaths: &mut Swaths, cells: &BoustrophedonCells) {
     let frame = cells.frame;
+    let fill_from = swaths
+        .areas
+        .iter()
+        .filter(|a| a.fill)
+        .map(|a| a.swaths.start)
+        .min()
+        .unwrap_or(swaths.swaths.len())
+        .min(swaths.swaths.len());
+    let fill_swaths = swaths.swaths.split_off(fill_from);
+    let fill_areas: Vec<SwathArea> = swaths.areas.iter().filter(|a| a.fill).cloned().collect();
     let mut keyed: Vec<(usize, Swath)> = swaths
         .swaths
         .iter()
@@ -162,7 +174,9 @@ pub fn cluster_into_cells(swaths: &mut Swaths, cells: &BoustrophedonCells) {
     }
     sort_lifts(&mut swaths.lifts);
     swaths.swaths = out;
+    swaths.swaths.extend(fill_swaths);
     swaths.areas = areas;
+    swaths.areas.extend(fill_areas);
 }
 
 #[cfg(test)]

@@ -21,6 +21,7 @@ use crate::obstacles::ObstacleClass;
 use crate::options::PlanOptions;
 use crate::path::{build_path, Path};
 use crate::prohibited::{forbidding, split};
+use crate::route::headland_graph::HeadlandGraph;
 use crate::route::{plan_route, plan_route_on, Route, RouteSettings};
 use crate::swath::{
     generate_with, generate_within, lifts, LinePlacement, Swath, SwathArea, SwathSettings, Swaths,
@@ -129,11 +130,21 @@ pub(super) fn fill_leftovers(
     };
     tally.work(&worked_lines(&worked.swaths, &worked.route, &worked.path));
     let before = tally.coverage();
+    // The route reaches a piece along the headland passes and the field's swaths, worked by then.
+    let tracks: Vec<geo::LineString> = worked
+        .swaths
+        .swaths
+        .iter()
+        .map(|s| geo::LineString::new(vec![s.centre.start, s.centre.end]))
+        .collect();
+    let graph = HeadlandGraph::with_tracks(&worked.headlands.passes, &tracks, width);
     let settings = FillSettings {
         width,
         bearing: worked.swaths.bearing,
         forbidden: &options.forbidden_bearings_deg,
         regions: &prep.field.prohibited,
+        min_length: options.min_swath_length_m(),
+        reachable: &|p| graph.reaches(p),
     };
     let pieces = if before.uncovered.is_empty() {
         Vec::new()

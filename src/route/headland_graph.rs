@@ -341,6 +341,24 @@ impl HeadlandGraph {
         })
     }
 
+    /// Whether a point joins the graph: whether a line of it is within a spur's reach (one and a
+    /// half widths).
+    ///
+    /// ```
+    /// use furrow::headland::{HeadlandPass, PassAround};
+    /// use furrow::route::headland_graph::HeadlandGraph;
+    /// use geo::{coord, LineString};
+    ///
+    /// let line = LineString::from(vec![(0., 0.), (100., 0.)]);
+    /// let passes = [HeadlandPass { index: 1, line, closed: false, around: PassAround::Field }];
+    /// let graph = HeadlandGraph::new(&passes, 6.0);
+    /// assert!(graph.reaches(coord! { x: 50.0, y: 8.9 }));
+    /// assert!(!graph.reaches(coord! { x: 50.0, y: 9.1 }));
+    /// ```
+    pub fn reaches(&self, p: Coord) -> bool {
+        self.nearest(p, SPUR_WIDTHS * self.width + 1e-6).is_some()
+    }
+
     /// The graph between these points (swath ends, the entrance and the exit): each joins by a
     /// spur of at most one and a half widths, or `unlimited` for the points in that set (the
     /// user's entrance and exit, which may lie anywhere).

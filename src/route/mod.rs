@@ -76,8 +76,11 @@ pub struct SequenceReport {
     pub method: SequenceMethod,
     /// The cost minimised: turning inside the blocks by the turn model and connections between
     /// them (and from the entrance), metres; each connection the headland offers no way for
-    /// counts [`CROSSING_PENALTY_M`] more.
+    /// counts [`CROSSING_PENALTY_M`] more. The field's blocks are sequenced first, then the
+    /// blocks that fill what they leave, from where the field's end: the sum of both.
     pub cost_m: f64,
+    /// Of [`cost_m`](Self::cost_m), the part of the blocks that fill what the field's leave.
+    pub fill_cost_m: f64,
 }
 
 /// The order of work.
@@ -112,6 +115,7 @@ impl Default for Route {
             sequence: SequenceReport {
                 method: SequenceMethod::Exact,
                 cost_m: 0.0,
+                fill_cost_m: 0.0,
             },
         }
     }
@@ -255,32 +259,92 @@ pub fn plan_route_on(
 
     let (names, block_ways) = cheapest_ways(swaths, blocks, settings);
     route.block_patterns = names;
-    let unlimited: Vec<usize> = if position.is_some() { vec![0] } else { vec![] };
     // With passes (or an exit) after the blocks, the last block should end where the headland
     // reaches.
-    let finish_on_headland =
-        !graph.is_empty() && (settings.exit.is_some() || passes.iter().any(|p| !not_island(p)));
-    let (solution, chosen_ways) = sequence_blocks(
-        &block_ways,
-        s,
-        position,
-        graph,
-        &unlimited,
-        finish_on_headland,
-        settings.seed,
-    );
-    route.sequence = SequenceReport {
-        method: solution.method,
-        cost_m: solution.cost,
+    let finish_on_headland = finishes_on_headland(graph, passes, settings);
+    // The field's blocks first, then the blocks that fill what they leave (reached once the
+    // crop round them is worked).
+    let fill_from = first_fill_swath(swaths);
+    let (field_blocks, fill_blocks): (Vec<usize>, Vec<usize>) = (0..blocks.blocks.len())
+        .partition(|&b| blocks.blocks[b].swaths.iter().any(|&i| i < fill_from));
+    // Once the field's swaths are worked, the machine may also drive along their tracks.
+    let field_tracks = || {
+        let tracks: Vec<LineString> = s[..fill_from.min(s.len())]
+            .iter()
+            .map(|w| LineString::new(vec![w.centre.start, w.centre.end]))
+            .collect();
+        HeadlandGraph::with_tracks(passes, &tracks, settings.width)
     };
+    let mut tracks_graph: Option<HeadlandGraph> = None;
+    let mut order: Vec<(usize, usize, bool)> = Vec::new(); // (block, way, returns)
+    let mut reports: Vec<(SequenceMethod, f64, bool)> = Vec::new();
+    for (group, fill) in [(field_blocks, false), (fill_blocks, true)] {
+        if group.is_empty() {
+            continue;
+        }
+        let group_ways: Vec<Vec<BlockWay>> = group.iter().map(|&b| block_ways[b].clone()).collect();
+        // The entrance (or where the passes first end) joins the graph however far it is.
+        let unlimited: Vec<usize> = if position.is_some() && order.is_empty() {
+            vec![0]
+        } else {
+            vec![]
+        };
+        let (on, finish_on_headland) = if fill && !order.is_empty() {
+            (
+                &*tracks_graph.get_or_insert_with(field_tracks),
+                fill_finishes_on_headland(passes, settings),
+            )
+        } else {
+            (graph, finish_on_headland)
+        };
+        let (solution, chosen_ways) = sequence_blocks(
+            &group_ways,
+            s,
+            position,
+            on,
+            &unlimited,
+            finish_on_headland,
+            settings.seed,
+        );
+        for &(g, wi) in &solution.order {
+            let Some(&(wi, returns)) = chosen_ways.get(g).and_then(|w| w.get(wi)) else {
+                continue;
+            };
+            let (Some(&b), Some(w)) = (group.get(g), group_ways.get(g).and_then(|w| w.get(wi)))
+            else {
+                continue;
+            };
+            order.push((b, wi, returns));
+            // A block that ends by driving back along its last swath leaves the machine at
+            // that swath's other end.
+            let end = if returns {
+                w.exit(s).and_then(|e| {
+                    let last = s.get(*w.swaths.last()?)?;
+                    Some(if e == last.centre.end {
+                        last.centre.start
+                    } else {
+                        last.centre.end
+                    })
+                })
+            } else {
+                w.exit(s)
+            };
+            position = end.or(position);
+        }
+        reports.push((solution.method, solution.cost, fill));
+    }
+    if let Some(&(method, _, _)) = reports.first() {
+        route.sequence = SequenceReport {
+            method,
+            cost_m: reports.iter().map(|r| r.1).sum(),
+            fill_cost_m: reports.iter().filter(|r| r.2).map(|r| r.1).sum(),
+        };
+    }
 
     // The steps: headland passes first, the blocks, headland passes last.
     let mut steps = pass_steps;
     let mut returns_after: Vec<usize> = Vec::new(); // steps after which the machine drives back
-    for &(b, wi) in &solution.order {
-        let Some(&(wi, returns)) = chosen_ways.get(b).and_then(|w| w.get(wi)) else {
-            continue;
-        };
+    for &(b, wi, returns) in &order {
         let Some(w) = block_ways.get(b).and_then(|w| w.get(wi)) else {
             continue;
         };
@@ -361,7 +425,7 @@ pub fn plan_route_on(
     // obstacle's passes, an island in the inner field.
     let last_swath = steps
         .iter()
-        .rposition(|st| matches!(st, RouteStep::Swath { .. }));
+        .rposition(|st| matches!(st, RouteStep::Swath { swath, .. } if *swath < fill_from));
     let after_swaths = |k: usize| last_swath.is_none_or(|l| k > l);
     // One search per connection: the lines through the headland graph.
     let lines: Vec<Option<LineString>> = (0..moves.len() + finish.iter().count())
@@ -372,13 +436,9 @@ pub fn plan_route_on(
         .chain(&finish)
         .zip(&lines)
         .any(|(&(k, _, _), line)| after_swaths(k) && line.is_none());
-    let tracks_graph = (needs_tracks && last_swath.is_some()).then(|| {
-        let tracks: Vec<LineString> = s
-            .iter()
-            .map(|w| LineString::new(vec![w.centre.start, w.centre.end]))
-            .collect();
-        HeadlandGraph::with_tracks(passes, &tracks, settings.width)
-    });
+    if tracks_graph.is_none() && needs_tracks && last_swath.is_some() {
+        tracks_graph = Some(field_tracks());
+    }
     let along_tracks = tracks_graph
         .as_ref()
         .map(|g| g.connect_with(&pairs, &ends_free));
@@ -419,6 +479,20 @@ pub fn plan_route_on(
     }
     route.steps = steps;
     route
+}
+
+/// The index of the first swath that fills what the others leave ([`SwathArea::fill`]): they
+/// come after the field's swaths. The number of swaths when there is none.
+///
+/// [`SwathArea::fill`]: crate::swath::SwathArea::fill
+fn first_fill_swath(swaths: &Swaths) -> usize {
+    swaths
+        .areas
+        .iter()
+        .filter(|a| a.fill)
+        .map(|a| a.swaths.start)
+        .min()
+        .unwrap_or(swaths.swaths.len())
 }
 
 /// The block order and the way of each block, and for each block and way of the order the way
@@ -501,8 +575,8 @@ fn cheapest_ways(
     (names, block_ways)
 }
 
-/// The block sequence problem [`plan_route`] solves first: each block's four ways in its
-/// pattern, connections along the headland from where the work starts (the entrance, or where
+/// The block sequence problem [`plan_route`] solves first: the field's blocks (those that fill
+/// what they leave are sequenced after them), each block's four ways in its pattern, connections along the headland from where the work starts (the entrance, or where
 /// the headland passes end when they come first). For checking the sequence against an
 /// exhaustive search.
 pub fn block_sequence_problem(
@@ -517,10 +591,18 @@ pub fn block_sequence_problem(
         position =
             append_headland_passes(&mut Vec::new(), passes, &graph, position, true, not_island);
     }
-    let (_, block_ways) = cheapest_ways(swaths, blocks, settings);
+    let (_, mut block_ways) = cheapest_ways(swaths, blocks, settings);
+    // The field's blocks come first in `blocks` (see `cluster_swaths`).
+    let fill_from = first_fill_swath(swaths);
+    block_ways.truncate(
+        blocks
+            .blocks
+            .iter()
+            .take_while(|b| b.swaths.iter().any(|&i| i < fill_from))
+            .count(),
+    );
     let unlimited: Vec<usize> = if position.is_some() { vec![0] } else { vec![] };
-    let finish_on_headland =
-        !graph.is_empty() && (settings.exit.is_some() || passes.iter().any(|p| !not_island(p)));
+    let finish_on_headland = finishes_on_headland(&graph, passes, settings);
     build_problem(
         &block_ways,
         &swaths.swaths,
@@ -695,6 +777,27 @@ fn step_ends(
 /// Whether a pass is reached from the field's headland: not one round an obstacle, an island in
 /// the inner field. With the headland first, those come after the swaths all the same: the
 /// machine reaches them along the swaths it has worked rather than through standing crop.
+/// Whether the blocks should end where the headland graph reaches: when an exit or the passes
+/// round obstacles come after them. (Passes round the field that come last are reached along
+/// the worked swaths' tracks from wherever the blocks end.)
+fn finishes_on_headland(
+    graph: &HeadlandGraph,
+    passes: &[HeadlandPass],
+    settings: &RouteSettings,
+) -> bool {
+    !graph.is_empty() && (settings.exit.is_some() || passes.iter().any(|p| !not_island(p)))
+}
+
+/// Whether the blocks that fill what the field's leave should end where the graph along the
+/// headland and the worked swaths' tracks reaches: when an exit or any passes come after them.
+fn fill_finishes_on_headland(passes: &[HeadlandPass], settings: &RouteSettings) -> bool {
+    let passes_after = match settings.headland_order {
+        HeadlandOrder::Last => !passes.is_empty(),
+        HeadlandOrder::First => passes.iter().any(|p| !not_island(p)),
+    };
+    settings.exit.is_some() || passes_after
+}
+
 fn not_island(p: &HeadlandPass) -> bool {
     p.around != PassAround::Obstacle
 }
