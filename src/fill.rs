@@ -118,11 +118,21 @@ fn fill_part(part: &Polygon, centres: &MultiPolygon, settings: &FillSettings) ->
     }
     let near = outset(&core, w / 2.0 - REACH_SLACK_M);
     let box_of = near.bounding_rect()?;
+    // Only the holes near the part matter (a field of 2,000 ponds is one polygon with 2,000
+    // holes).
     let nearby: Vec<Polygon> = centres
         .0
         .iter()
         .filter(|p| p.bounding_rect().is_some_and(|b| b.intersects(&box_of)))
-        .cloned()
+        .map(|p| {
+            let holes = p
+                .interiors()
+                .iter()
+                .filter(|h| h.bounding_rect().is_some_and(|b| b.intersects(&box_of)))
+                .cloned()
+                .collect();
+            Polygon::new(p.exterior().clone(), holes)
+        })
         .collect();
     let lanes = MultiPolygon::new(nearby).intersection(&near);
     if lanes.unsigned_area() <= 0.0 {
