@@ -359,10 +359,11 @@ test("editor: screenshots of corpus fields, day and night", { timeout: TIMEOUT *
   });
 });
 
-/** The swaths' bearings of the plan shown, folded into [0, 180). */
+/** The bearings of the field's swaths in the plan shown (not those that fill what they leave, at
+ * their own bearings), folded into [0, 180). */
 const swathBearings = (page) =>
   page.evaluate(() =>
-    window.furrow.plan.features.filter((f) => f.properties.kind === "swath").map((f) => ((f.properties.bearing_deg % 180) + 180) % 180),
+    window.furrow.plan.features.filter((f) => f.properties.kind === "swath" && !f.properties.fill).map((f) => ((f.properties.bearing_deg % 180) + 180) % 180),
   );
 
 /** Compass bearing from lon/lat a to b, folded into [0, 180) (local flat approximation). */
