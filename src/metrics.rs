@@ -220,7 +220,9 @@ pub struct DecompositionCandidate {
     pub turn_count: usize,
     /// Headland passes along borders between blocks.
     pub block_headland_passes: usize,
-    /// Estimated operation time, seconds (as [`Summary::estimated_time_s`]).
+    /// Estimated operation time, seconds (as [`Summary::estimated_time_s`]), before what the
+    /// plan leaves is filled: the decompositions are compared by it, and only the chosen one
+    /// is filled.
     pub estimated_time_s: f64,
     /// Inner field area its swaths leave uncovered, square metres: counted as if worked at
     /// working speed when the decompositions are compared.

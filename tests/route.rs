@@ -62,6 +62,15 @@ fn check_connection(
         if spur(pts[n - 2], pts[n - 1]) {
             allowed.push(LineString::new(vec![pts[n - 2], pts[n - 1]]));
         }
+        // Out of a dead end, back along the swath just worked: the spur from its other end.
+        let on_worked = |p: Coord| {
+            worked
+                .iter()
+                .any(|t| Euclidean.distance(&Point(p), t) < 0.01)
+        };
+        if n >= 3 && on_worked(pts[0]) && on_worked(pts[1]) && spur(pts[1], pts[2]) {
+            allowed.push(LineString::new(vec![pts[1], pts[2]]));
+        }
     }
     for p in samples(line) {
         if !inner.contains(&Point(p)) {
@@ -78,7 +87,7 @@ fn check_connection(
             .any(|t| Euclidean.distance(&Point(p), t) < 0.01);
         assert!(
             to_edge < 0.05 || on_track,
-            "{name}: a connection crosses the inner field at ({:.2}, {:.2}), {to_edge:.2} m from its edge",
+            "{name}: a connection crosses the inner field at ({:.2}, {:.2}), {to_edge:.2} m from its edge ",
             p.x,
             p.y
         );
@@ -176,9 +185,17 @@ fn longest_through_standing_crop(plan: &Plan) -> f64 {
     let mut measure = |line: &LineString, worked: &[LineString]| {
         let mut run: f64 = 0.0;
         let n = line.0.len();
+        // Out of a dead end, back along the swath just worked: the spur is the second piece.
+        let on_worked = |p: Coord| {
+            worked
+                .iter()
+                .any(|t| Euclidean.distance(&Point(p), t) < 0.01)
+        };
+        let back = n >= 3 && on_worked(line.0[0]) && on_worked(line.0[1]);
         for (k, w) in line.0.windows(2).enumerate() {
             let d = w[1] - w[0];
-            let spur = (k == 0 || k + 2 == n) && d.x.hypot(d.y) <= 1.5 * w_m + 1e-6;
+            let end = k == 0 || k + 2 == n || (k == 1 && back);
+            let spur = end && d.x.hypot(d.y) <= 1.5 * w_m + 1e-6;
             if spur {
                 continue;
             }
@@ -338,7 +355,7 @@ fn the_block_sequence_equals_an_exhaustive_search_on_fields_of_two_to_eight_bloc
                 ..field.options.clone()
             };
             let p = plan(&field.text(), &options, &field.name);
-            // The field's blocks: those that fill what they leave are sequenced after them.
+            // The field's blocks, sequenced first.
             let blocks = field_block_count(&p);
             if !(2..=8).contains(&blocks) {
                 continue;
@@ -367,10 +384,12 @@ fn the_block_sequence_equals_an_exhaustive_search_on_fields_of_two_to_eight_bloc
                 field_cost,
                 all.cost
             );
+            // The field's blocks in that order; the blocks that fill (numbered after them) come
+            // after them or on the way between them, each once.
             let order: Vec<usize> = exact.order.iter().map(|&(b, _)| b).collect();
-            assert_eq!(p.route.block_order[..blocks], order, "{}", field.name);
-            // The blocks that fill come after, each once.
-            let mut fill: Vec<usize> = p.route.block_order[blocks..].to_vec();
+            let (field_order, mut fill): (Vec<usize>, Vec<usize>) =
+                p.route.block_order.iter().partition(|&&b| b < blocks);
+            assert_eq!(field_order, order, "{}", field.name);
             fill.sort_unstable();
             assert_eq!(fill, (blocks..p.blocks.blocks.len()).collect::<Vec<_>>());
             checked.push(format!("{} ({blocks})", field.name));

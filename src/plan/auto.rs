@@ -225,7 +225,7 @@ fn reason(
             .map(|f| format!("{} {}", f.method.as_str(), minutes(f.estimated_time_s)))
             .collect();
         format!(
-            "{} has the lowest estimated operation time ({}; crop left uncovered counted as worked at working speed, a connection straight across the crop as worse than any time; within 0.1 % the simpler wins)",
+            "{} has the lowest estimated operation time before the fill ({}; crop left uncovered counted as worked at working speed, a connection straight across the crop as worse than any time; within 0.1 % the simpler wins)",
             chosen.as_str(),
             times.join(", ")
         )

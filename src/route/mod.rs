@@ -12,6 +12,8 @@
 //!   local search beyond.
 //! - [`nearest`]: the plain order for fields of many blocks (more than 1,024 ways, 256 blocks
 //!   of four), whose connection table would take gigabytes: each next block the nearest.
+//! - `on_the_way`: the blocks that fill what the field's blocks leave, sequenced after them,
+//!   each moved to between two field blocks where it lies on the way.
 //!
 //! The headland passes come last, as in seeding (Zhou et al. 2.1), from the innermost out, so the
 //! machine finishes on the outermost pass at the field edge; or first, as in harvesting, from the
@@ -24,6 +26,7 @@
 
 pub mod headland_graph;
 pub mod nearest;
+mod on_the_way;
 pub mod pattern;
 pub mod sequence;
 
@@ -34,6 +37,7 @@ use crate::sort::SharedSort;
 use crate::swath::Swaths;
 use geo::{Coord, Intersects, LineString, MultiPolygon};
 use headland_graph::{HeadlandGraph, CROSSING_PENALTY_M};
+use on_the_way::OnTheWay;
 use pattern::{ways, BlockWay, SwathOrder};
 use sequence::{SequenceMethod, SequenceProblem, Way};
 
@@ -77,9 +81,10 @@ pub struct SequenceReport {
     /// The cost minimised: turning inside the blocks by the turn model and connections between
     /// them (and from the entrance), metres; each connection the headland offers no way for
     /// counts [`CROSSING_PENALTY_M`] more. The field's blocks are sequenced first, then the
-    /// blocks that fill what they leave, from where the field's end: the sum of both.
+    /// blocks that fill what they leave, from where the field's end; a fill block is then
+    /// moved between two blocks where it lies on the way: the sum of both.
     pub cost_m: f64,
-    /// Of [`cost_m`](Self::cost_m), the part of the blocks that fill what the field's leave.
+    /// Of [`cost_m`](Self::cost_m), what the blocks that fill what the field's leave add.
     pub fill_cost_m: f64,
 }
 
@@ -276,7 +281,9 @@ pub fn plan_route_on(
         HeadlandGraph::with_tracks(passes, &tracks, settings.width)
     };
     let mut tracks_graph: Option<HeadlandGraph> = None;
+    let start = position;
     let mut order: Vec<(usize, usize, bool)> = Vec::new(); // (block, way, returns)
+    let mut fill_at = 0; // where the fill's blocks start in `order`
     let mut reports: Vec<(SequenceMethod, f64, bool)> = Vec::new();
     for (group, fill) in [(field_blocks, false), (fill_blocks, true)] {
         if group.is_empty() {
@@ -306,6 +313,9 @@ pub fn plan_route_on(
             finish_on_headland,
             settings.seed,
         );
+        if fill {
+            fill_at = order.len();
+        }
         for &(g, wi) in &solution.order {
             let Some(&(wi, returns)) = chosen_ways.get(g).and_then(|w| w.get(wi)) else {
                 continue;
@@ -333,11 +343,22 @@ pub fn plan_route_on(
         }
         reports.push((solution.method, solution.cost, fill));
     }
+    // Fill blocks worked where they lie on the way between the field's blocks.
+    let mut saved = 0.0;
+    if let Some(after_field) = tracks_graph.as_ref().filter(|_| fill_at > 0) {
+        let improver = OnTheWay {
+            block_ways: &block_ways,
+            swaths: s,
+            graph,
+            after_field,
+        };
+        saved = improver.improve(&mut order, &mut fill_at, start);
+    }
     if let Some(&(method, _, _)) = reports.first() {
         route.sequence = SequenceReport {
             method,
-            cost_m: reports.iter().map(|r| r.1).sum(),
-            fill_cost_m: reports.iter().filter(|r| r.2).map(|r| r.1).sum(),
+            cost_m: reports.iter().map(|r| r.1).sum::<f64>() - saved,
+            fill_cost_m: reports.iter().filter(|r| r.2).map(|r| r.1).sum::<f64>() - saved,
         };
     }
 
