@@ -98,7 +98,11 @@ pub fn outline(grid: &Grid, part: &Part, smoothing: f64) -> Option<Polygon> {
             sides.push(((i, j + 1), (i, j)));
         }
     }
-    sides.shared_sort_unstable_by(|a, b| a.cmp(b));
+    // Sorted through their indices: the sort of indices is the one the cells' use, where a sort
+    // of the sides themselves would be another few kilobytes of the wasm module.
+    let mut by_side: Vec<usize> = (0..sides.len()).collect();
+    by_side.shared_sort_unstable_by(|&a, &b| sides[a].cmp(&sides[b]));
+    let sides: Vec<(Corner, Corner)> = by_side.into_iter().map(|i| sides[i]).collect();
     let corner = |(i, j): Corner| grid.corner(i.max(0) as usize, j.max(0) as usize);
     let mut rings: Vec<LineString> = trace(&sides)
         .into_iter()

@@ -68,29 +68,11 @@ pub(super) fn work(
     let blocks = cluster_swaths(&laid.swaths);
     times.lap(&mut clock, |t| &mut t.decomposition);
     let earlier = same_as.and_then(|w| reused(w, &laid, &blocks));
-    let route = route_candidate(prep, &laid, &blocks, earlier.as_ref().map(|(r, _)| r));
-    times.lap(&mut clock, |t| &mut t.route);
-    laid.warnings.extend(straight_connections(&route));
-    let built = earlier.is_none().then(|| {
-        build_path(
-            &route,
-            &laid.swaths,
-            &laid.headlands.passes,
-            &prep.options.vehicle(),
-            Some(&prep.area),
-        )
-    });
-    let Some(path) = built.as_ref().or(earlier.as_ref().map(|&(_, path)| path)) else {
-        return Err(PlanError::new(
-            ErrorCode::Internal,
-            "a candidate without its path",
-        ));
-    };
-    times.lap(&mut clock, |t| &mut t.path);
-    laid.warnings.extend(turns_leaving(path, prep.options));
+    let mut warnings = std::mem::take(&mut laid.warnings);
+    let (route, built, summary) =
+        route_and_path(prep, &laid, &blocks, earlier.as_ref(), &mut warnings, times)?;
+    laid.warnings = warnings;
     let machine = prep.options.machine();
-    let summary = measure(prep, &laid, &blocks, &route, path, machine);
-    times.lap(&mut clock, |t| &mut t.metrics);
     let shares_path = built.is_none();
     Ok(Worked {
         method,
@@ -188,25 +170,15 @@ pub(super) fn fill_leftovers(
         decomposition_evaluations,
         block_headland_passes,
     };
-    let route = route_candidate(prep, &laid, &blocks, None);
-    times.lap(&mut clock, |t| &mut t.route);
-    let path = build_path(
-        &route,
-        &laid.swaths,
-        &laid.headlands.passes,
-        &options.vehicle(),
-        Some(&prep.area),
-    );
-    times.lap(&mut clock, |t| &mut t.path);
     warnings.retain(|w| {
         !matches!(
             w.code,
             WarningCode::StraightConnections | WarningCode::TurnLeavesField
         )
     });
-    warnings.extend(straight_connections(&route));
-    warnings.extend(turns_leaving(&path, options));
-    let summary = measure(prep, &laid, &blocks, &route, &path, machine);
+    let (route, path, summary) = route_and_path(prep, &laid, &blocks, None, &mut warnings, times)?;
+    let path = path.unwrap_or_default();
+    let mut clock = Instant::now();
     let after = tally.coverage();
     times.lap(&mut clock, |t| &mut t.metrics);
     let filled = Worked {
@@ -224,6 +196,43 @@ pub(super) fn fill_leftovers(
         machine,
     };
     Ok((filled, after))
+}
+
+/// Routes, paths and measures the swaths laid, taking the route and path of a candidate worked
+/// before where `earlier` gives them (the path is then not built: `None`). Warns in `warnings`
+/// of straight connections and of turns that leave the field.
+fn route_and_path(
+    prep: &Prepared,
+    laid: &Laid,
+    blocks: &Blocks,
+    earlier: Option<&(Route, &Path)>,
+    warnings: &mut Vec<Warning>,
+    times: &mut StageTimes,
+) -> Result<(Route, Option<Path>, Summary), PlanError> {
+    let mut clock = Instant::now();
+    let route = route_candidate(prep, laid, blocks, earlier.map(|(r, _)| r));
+    times.lap(&mut clock, |t| &mut t.route);
+    warnings.extend(straight_connections(&route));
+    let built = earlier.is_none().then(|| {
+        build_path(
+            &route,
+            &laid.swaths,
+            &laid.headlands.passes,
+            &prep.options.vehicle(),
+            Some(&prep.area),
+        )
+    });
+    let Some(path) = built.as_ref().or(earlier.map(|&(_, path)| path)) else {
+        return Err(PlanError::new(
+            ErrorCode::Internal,
+            "a candidate without its path",
+        ));
+    };
+    times.lap(&mut clock, |t| &mut t.path);
+    warnings.extend(turns_leaving(path, prep.options));
+    let summary = measure(prep, laid, blocks, &route, path, prep.options.machine());
+    times.lap(&mut clock, |t| &mut t.metrics);
+    Ok((route, built, summary))
 }
 
 /// Where the centre line of a strip of `width` may run: the field less all its obstacles, inset

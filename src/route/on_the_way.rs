@@ -14,7 +14,6 @@ use super::pattern::BlockWay;
 use crate::geometry::PlanarHypot;
 use crate::swath::Swath;
 use geo::Coord;
-use std::collections::HashMap;
 
 /// A block in the order: its index, the way it is worked (into its ways) and whether it ends by
 /// driving back along its last swath.
@@ -23,6 +22,10 @@ pub(super) type Placed = (usize, usize, bool);
 /// The gaps nearest a fill block, by the straight distance from the block's entry to where the
 /// gap starts, tried for it: a detour to a far block never pays.
 const GAPS_TRIED: usize = 4;
+
+/// Fill blocks beyond this many stay after the field's blocks: each is weighed against a few
+/// dozen ways, and the ways' table is searched through.
+const MAX_TAIL: usize = 128;
 
 /// The order and the graphs it is driven on.
 pub(super) struct OnTheWay<'a> {
@@ -37,6 +40,7 @@ pub(super) struct OnTheWay<'a> {
 }
 
 /// Where a placed block is entered and left (after driving back, where it does).
+#[inline(never)]
 fn ends(ways: &[Vec<BlockWay>], s: &[Swath], (b, wi, returns): Placed) -> Option<(Coord, Coord)> {
     let w = ways.get(b)?.get(wi)?;
     let (entry, exit) = (w.entry(s)?, w.exit(s)?);
@@ -71,25 +75,27 @@ fn own_cost(ways: &[Vec<BlockWay>], s: &[Swath], (b, wi, returns): Placed) -> f6
 
 /// Distances between the points of the order, each searched once.
 struct Table<'g> {
-    ids: HashMap<(u64, u64), usize>,
+    points: Vec<Coord>,
     on_headland: Connections<'g>,
     after_field: Connections<'g>,
-    known: HashMap<(usize, usize, bool), Option<f64>>,
+    /// The ways searched.
+    known: Vec<((usize, usize, bool), Option<f64>)>,
 }
 
 impl Table<'_> {
     fn id(&self, p: Coord) -> Option<usize> {
-        self.ids.get(&(p.x.to_bits(), p.y.to_bits())).copied()
+        self.points.iter().position(|&q| q == p)
     }
 
     /// The way from `a` to `b` along the headland passes (`after_field`: also along the
     /// field's tracks); `None` where there is none.
+    #[inline(never)]
     fn way(&mut self, a: Coord, b: Coord, after_field: bool) -> Option<f64> {
         if (b - a).x.planar_hypot((b - a).y) < 1e-9 {
             return Some(0.0);
         }
-        let (i, j) = (self.id(a)?, self.id(b)?);
-        if let Some(&d) = self.known.get(&(i, j, after_field)) {
+        let key = (self.id(a)?, self.id(b)?, after_field);
+        if let Some(&(_, d)) = self.known.iter().find(|k| k.0 == key) {
             return d;
         }
         let c = if after_field {
@@ -97,12 +103,13 @@ impl Table<'_> {
         } else {
             &self.on_headland
         };
-        let d = c.distances(i, &[j]).first().copied().flatten();
-        self.known.insert((i, j, after_field), d);
+        let d = c.distances(key.0, &[key.1]).first().copied().flatten();
+        self.known.push((key, d));
         d
     }
 
     /// As [`way`](Self::way), with a straight crossing at its penalty where there is none.
+    #[inline(never)]
     fn cost(&mut self, a: Coord, b: Coord, after_field: bool) -> f64 {
         self.way(a, b, after_field).unwrap_or_else(|| {
             let v = b - a;
@@ -121,22 +128,25 @@ impl OnTheWay<'_> {
         fill_from: &mut usize,
         start: Option<Coord>,
     ) -> f64 {
-        if *fill_from == 0 || *fill_from >= order.len() {
+        if *fill_from == 0 || *fill_from >= order.len() || order.len() - *fill_from > MAX_TAIL {
             return 0.0;
         }
         let mut table = self.table(order);
         let mut saved = 0.0;
-        // Each move takes one block out of the tail: at most as many rounds as blocks there.
-        for _ in *fill_from..order.len() {
-            let Some((from, to, placed, gain)) =
-                self.best_move(order, *fill_from, start, &mut table)
-            else {
-                break;
-            };
-            order.remove(from);
-            order.insert(to, placed);
-            *fill_from += 1;
-            saved += gain;
+        // Each fill block once, in its order after the field's: the first of the tail is at
+        // `fill_from` while it stays, after the blocks moved out before it.
+        let mut from = *fill_from;
+        while from < order.len() {
+            match self.best_move(order, from, *fill_from, start, &mut table) {
+                Some((to, placed, gain)) => {
+                    order.remove(from);
+                    order.insert(to, placed);
+                    *fill_from += 1;
+                    from += 1;
+                    saved += gain;
+                }
+                None => from += 1,
+            }
         }
         saved
     }
@@ -144,17 +154,16 @@ impl OnTheWay<'_> {
     /// Every entry and exit of the blocks placed and of every way of the fill's blocks, joined
     /// to both graphs.
     fn table<'g>(&'g self, order: &[Placed]) -> Table<'g> {
-        let mut points = Vec::new();
-        let mut ids = HashMap::new();
+        let mut points: Vec<Coord> = Vec::new();
         let mut add = |p: Coord| {
-            ids.entry((p.x.to_bits(), p.y.to_bits()))
-                .or_insert_with(|| {
-                    points.push(p);
-                    points.len() - 1
-                });
+            if !points.contains(&p) {
+                points.push(p);
+            }
         };
         for &(b, wi, returns) in order {
-            for placed in self.variants(b).chain([(b, wi, returns)]) {
+            let mut all = self.variants(b);
+            all.push((b, wi, returns));
+            for placed in all {
                 if let Some((entry, exit)) = ends(self.block_ways, self.swaths, placed) {
                     add(entry);
                     add(exit);
@@ -164,56 +173,59 @@ impl OnTheWay<'_> {
         let on_headland = self.graph.connect(&points);
         let after_field = self.after_field.connect(&points);
         Table {
-            ids,
+            points,
             on_headland,
             after_field,
-            known: HashMap::new(),
+            known: Vec::new(),
         }
     }
 
     /// Every way block `b` may be worked: each of its ways, ending at its exit or driving back.
-    fn variants(&self, b: usize) -> impl Iterator<Item = Placed> {
+    fn variants(&self, b: usize) -> Vec<Placed> {
         let n = self.block_ways.get(b).map_or(0, Vec::len);
-        (0..n).flat_map(move |wi| [(b, wi, false), (b, wi, true)])
+        let mut out = Vec::with_capacity(2 * n);
+        for wi in 0..n {
+            out.push((b, wi, false));
+            out.push((b, wi, true));
+        }
+        out
     }
 
-    /// The move of one fill block from the tail into a gap among the blocks before it that
-    /// saves most: (its place now, its new place, how it is worked there, the saving).
+    /// The move of the fill block at `order[from]` (in the tail) into the gap among the blocks
+    /// before the tail that saves most, if one saves: (its new place, how it is worked there, the
+    /// saving).
     fn best_move(
         &self,
         order: &[Placed],
+        from: usize,
         fill_from: usize,
         start: Option<Coord>,
         table: &mut Table,
-    ) -> Option<(usize, usize, Placed, f64)> {
+    ) -> Option<(usize, Placed, f64)> {
         let ends_of = |p: Placed| ends(self.block_ways, self.swaths, p);
-        let mut best: Option<(usize, usize, Placed, f64)> = None;
-        for from in fill_from..order.len() {
-            let here = order[from];
-            let Some((entry, exit)) = ends_of(here) else {
-                continue;
-            };
-            let before = if from == 0 {
-                start
-            } else {
-                ends_of(order[from - 1]).map(|e| e.1)
-            };
-            let after = order.get(from + 1).and_then(|&p| ends_of(p)).map(|e| e.0);
-            // What leaving it out of the tail saves.
-            let mut saving = own_cost(self.block_ways, self.swaths, here);
-            if let Some(a) = before {
-                saving += table.cost(a, entry, true);
-                if let Some(c) = after {
-                    saving += table.cost(exit, c, true) - table.cost(a, c, true);
-                }
-            } else if let Some(c) = after {
-                saving += table.cost(exit, c, true);
+        let here = *order.get(from)?;
+        let (entry, exit) = ends_of(here)?;
+        let before = if from == 0 {
+            start
+        } else {
+            ends_of(order[from - 1]).map(|e| e.1)
+        };
+        let after = order.get(from + 1).and_then(|&p| ends_of(p)).map(|e| e.0);
+        // What leaving it out of the tail saves.
+        let mut saving = own_cost(self.block_ways, self.swaths, here);
+        if let Some(a) = before {
+            saving += table.cost(a, entry, true);
+            if let Some(c) = after {
+                saving += table.cost(exit, c, true) - table.cost(a, c, true);
             }
-            for (to, placed, cost) in self.insertions(order, fill_from, here.0, table) {
-                let gain = saving - cost;
-                if gain > 1e-6 && best.as_ref().is_none_or(|b| gain > b.3) {
-                    best = Some((from, to, placed, gain));
-                }
+        } else if let Some(c) = after {
+            saving += table.cost(exit, c, true);
+        }
+        let mut best: Option<(usize, Placed, f64)> = None;
+        for (to, placed, cost) in self.insertions(order, fill_from, here.0, table) {
+            let gain = saving - cost;
+            if gain > 1e-6 && best.as_ref().is_none_or(|b| gain > b.2) {
+                best = Some((to, placed, gain));
             }
         }
         best
@@ -230,27 +242,30 @@ impl OnTheWay<'_> {
         table: &mut Table,
     ) -> Vec<(usize, Placed, f64)> {
         let ends_of = |p: Placed| ends(self.block_ways, self.swaths, p);
-        let Some(centre) = self
-            .variants(b)
-            .next()
-            .and_then(ends_of)
-            .map(|(entry, _)| entry)
-        else {
+        let Some((centre, _)) = ends_of((b, 0, false)) else {
             return Vec::new();
         };
         // Gap g lies between order[g - 1] and order[g].
-        let mut gaps: Vec<(usize, f64, Coord, Coord)> = (1..fill_from)
-            .filter_map(|g| {
-                let a = ends_of(order[g - 1])?.1;
-                let c = ends_of(order[g])?.0;
-                let v = a - centre;
-                Some((g, v.x.planar_hypot(v.y), a, c))
-            })
-            .collect();
-        gaps.sort_by(|x, y| x.1.total_cmp(&y.1).then(x.0.cmp(&y.0)));
-        gaps.truncate(GAPS_TRIED);
+        let gaps = (1..fill_from).filter_map(|g| {
+            let a = ends_of(order[g - 1])?.1;
+            let c = ends_of(order[g])?.0;
+            let v = a - centre;
+            Some((g, v.x.planar_hypot(v.y), a, c))
+        });
+        // The nearest few, nearest first (ties to the earlier gap).
+        let mut nearest: Vec<(usize, f64, Coord, Coord)> = Vec::with_capacity(GAPS_TRIED + 1);
+        for g in gaps {
+            let at = nearest
+                .iter()
+                .position(|n| g.1 < n.1)
+                .unwrap_or(nearest.len());
+            if at < GAPS_TRIED {
+                nearest.insert(at, g);
+                nearest.truncate(GAPS_TRIED);
+            }
+        }
         let mut out = Vec::new();
-        for (g, _, a, c) in gaps {
+        for (g, _, a, c) in nearest {
             let direct = table.cost(a, c, false);
             let mut cheapest: Option<(Placed, f64)> = None;
             for placed in self.variants(b) {
