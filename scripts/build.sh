@@ -12,8 +12,9 @@ scripts/setup.sh rust
 # The dependencies are optimised for size: 23 KB less gzipped (most of it the sorts that
 # i_overlay instantiates), no slower in Node within 2 % (at "z" the planner's own code plans 2.3
 # times slower, at "s" 1.4 times). The planner's own code at opt-level 2 with LLVM's inlining
-# threshold at 100 (its default at opt-level 2 is 225): 17 KB less gzipped, and 4 to 8 % faster
-# in Chromium and Node (geometric means over the corpus, interleaved: scripts/bench-compare.mjs).
+# threshold at 50 (its default at opt-level 2 is 225): at 100, 17 KB less gzipped than the
+# default and 4 to 8 % faster in Chromium and Node; at 50, 8 KB less again for 1 % more time in
+# both (geometric means over the corpus, interleaved: scripts/bench-compare.mjs).
 # The threshold is passed by `cargo rustc` to this crate alone, so the dependencies keep their
 # size-optimised inlining; the whole module's inlining is done there (fat LTO).
 # Native builds keep opt-level 3 throughout.
@@ -24,7 +25,7 @@ build_module() { # feature, wasm-bindgen output name
     --no-default-features --features "small-alloc,$1" \
     --config 'profile.release.package."*".opt-level="z"' \
     --config 'profile.release.opt-level=2' \
-    -- -C llvm-args=-inline-threshold=100
+    -- -C llvm-args=-inline-threshold=50
   # furrow_wasm.js is wasm-bindgen's module; furrow.js (js/) wraps it and recreates the instance
   # after a trap, with the reset function wasm-bindgen generates on request.
   # The name section (function names for stack traces, 125 KB) and the producers section are left
