@@ -281,7 +281,6 @@ pub fn plan_route_on(
         HeadlandGraph::with_tracks(passes, &tracks, settings.width)
     };
     let mut tracks_graph: Option<HeadlandGraph> = None;
-    let start = position;
     let mut order: Vec<(usize, usize, bool)> = Vec::new(); // (block, way, returns)
     let mut fill_at = 0; // where the fill's blocks start in `order`
     let mut reports: Vec<(SequenceMethod, f64, bool)> = Vec::new();
@@ -352,7 +351,7 @@ pub fn plan_route_on(
             graph,
             after_field,
         };
-        saved = improver.improve(&mut order, &mut fill_at, start);
+        saved = improver.improve(&mut order, &mut fill_at);
     }
     if let Some(&(method, _, _)) = reports.first() {
         route.sequence = SequenceReport {

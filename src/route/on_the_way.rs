@@ -120,24 +120,18 @@ impl Table<'_> {
 
 impl OnTheWay<'_> {
     /// Moves fill blocks from `order[fill_from..]` into the gaps between `order[..fill_from]`
-    /// where that saves driving (see the module). `start` is where the machine is before the
-    /// first block. Gives the saving, metres (never negative).
-    pub(super) fn improve(
-        &self,
-        order: &mut Vec<Placed>,
-        fill_from: &mut usize,
-        start: Option<Coord>,
-    ) -> f64 {
+    /// where that saves driving (see the module). Gives the saving, metres (never negative).
+    pub(super) fn improve(&self, order: &mut Vec<Placed>, fill_from: &mut usize) -> f64 {
         if *fill_from == 0 || *fill_from >= order.len() || order.len() - *fill_from > MAX_TAIL {
             return 0.0;
         }
-        let mut table = self.table(order);
+        let mut table = self.table(order, *fill_from);
         let mut saved = 0.0;
         // Each fill block once, in its order after the field's: the first of the tail is at
         // `fill_from` while it stays, after the blocks moved out before it.
         let mut from = *fill_from;
         while from < order.len() {
-            match self.best_move(order, from, *fill_from, start, &mut table) {
+            match self.best_move(order, from, *fill_from, &mut table) {
                 Some((to, placed, gain)) => {
                     order.remove(from);
                     order.insert(to, placed);
@@ -151,17 +145,21 @@ impl OnTheWay<'_> {
         saved
     }
 
-    /// Every entry and exit of the blocks placed and of every way of the fill's blocks, joined
-    /// to both graphs.
-    fn table<'g>(&'g self, order: &[Placed]) -> Table<'g> {
+    /// Every entry and exit of the blocks placed and of every way of the fill's blocks (from
+    /// `fill_from` on), joined to both graphs.
+    fn table<'g>(&'g self, order: &[Placed], fill_from: usize) -> Table<'g> {
         let mut points: Vec<Coord> = Vec::new();
         let mut add = |p: Coord| {
             if !points.contains(&p) {
                 points.push(p);
             }
         };
-        for &(b, wi, returns) in order {
-            let mut all = self.variants(b);
+        for (k, &(b, wi, returns)) in order.iter().enumerate() {
+            let mut all = if k >= fill_from {
+                self.variants(b)
+            } else {
+                Vec::new()
+            };
             all.push((b, wi, returns));
             for placed in all {
                 if let Some((entry, exit)) = ends(self.block_ways, self.swaths, placed) {
@@ -199,17 +197,13 @@ impl OnTheWay<'_> {
         order: &[Placed],
         from: usize,
         fill_from: usize,
-        start: Option<Coord>,
         table: &mut Table,
     ) -> Option<(usize, Placed, f64)> {
         let ends_of = |p: Placed| ends(self.block_ways, self.swaths, p);
         let here = *order.get(from)?;
         let (entry, exit) = ends_of(here)?;
-        let before = if from == 0 {
-            start
-        } else {
-            ends_of(order[from - 1]).map(|e| e.1)
-        };
+        // The tail follows the field's blocks: there is always a block before it.
+        let before = ends_of(*order.get(from.checked_sub(1)?)?).map(|e| e.1);
         let after = order.get(from + 1).and_then(|&p| ends_of(p)).map(|e| e.0);
         // What leaving it out of the tail saves.
         let mut saving = own_cost(self.block_ways, self.swaths, here);
