@@ -1,7 +1,7 @@
 //! The route: the order in which swaths, blocks and headland passes are worked, which way each
 //! is driven, and the connections between them along the headland.
 //!
-//! Three parts, each in its own module:
+//! Its parts, each in its own module:
 //! - [`pattern`]: the order of the swaths inside a block (boustrophedon, snake, spiral, custom,
 //!   or `auto`, the one whose turns cost least), and the four ways to start it.
 //! - [`headland_graph`]: the lines along which the machine moves between blocks without crossing
