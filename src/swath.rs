@@ -597,6 +597,27 @@ fn merge_touching(pieces: &[(f64, f64)], out: &mut Vec<(f64, f64)>) {
 }
 
 impl Swaths {
+    /// The index of the first swath that fills what the others leave ([`SwathArea::fill`]):
+    /// they come after the field's swaths. The number of swaths when there is none.
+    ///
+    /// ```
+    /// use furrow::swath::generate;
+    /// use geo::{polygon, MultiPolygon};
+    /// let field = polygon![(x: 0., y: 0.), (x: 60., y: 0.), (x: 60., y: 100.), (x: 0., y: 100.)];
+    /// let swaths = generate(&MultiPolygon::new(vec![field]), 0.0, 6.0, 6.0)?;
+    /// assert_eq!(swaths.first_fill_swath(), swaths.swaths.len());
+    /// # Ok::<(), furrow::PlanError>(())
+    /// ```
+    pub fn first_fill_swath(&self) -> usize {
+        self.areas
+            .iter()
+            .filter(|a| a.fill)
+            .map(|a| a.swaths.start)
+            .min()
+            .unwrap_or(self.swaths.len())
+            .min(self.swaths.len())
+    }
+
     /// Appends the swaths of another area (a prohibited region worked in its own direction):
     /// their indices follow on, and their lines are numbered apart from this set's so that no
     /// block joins swaths of the two.

@@ -142,13 +142,7 @@ fn check_connections_but_straight(plan: &Plan, name: &str) {
 
 /// The number of the field's swaths: those before the ones that fill what they leave.
 fn field_swath_count(plan: &Plan) -> usize {
-    plan.swaths
-        .areas
-        .iter()
-        .filter(|a| a.fill)
-        .map(|a| a.swaths.start)
-        .min()
-        .unwrap_or(plan.swaths.swaths.len())
+    plan.swaths.first_fill_swath()
 }
 
 /// The number of the field's blocks: those before the ones that fill what they leave.

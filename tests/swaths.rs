@@ -43,17 +43,6 @@ fn length_inside(line: &Line, polygon: &Polygon) -> f64 {
         .sum()
 }
 
-/// The index of the first swath that fills what the others leave (they come last).
-fn first_fill_swath(plan: &Plan) -> usize {
-    plan.swaths
-        .areas
-        .iter()
-        .filter(|a| a.fill)
-        .map(|a| a.swaths.start)
-        .min()
-        .unwrap_or(plan.swaths.swaths.len())
-}
-
 /// A swath that fills what the others leave may run anywhere in the field (in the headland's
 /// corners, say): its whole strip inside the field and off every obstacle (within 1 cm: the
 /// field inset by half a width, where its centre line may run, rounds reflex corners by chords
@@ -96,7 +85,7 @@ fn check_swaths(plan: &Plan, name: &str) {
         .filter(|(i, _)| plan.obstacles.class.get(*i) != Some(&ObstacleClass::A))
         .map(|(_, o)| &o.polygon)
         .collect();
-    let fill_from = first_fill_swath(plan);
+    let fill_from = plan.swaths.first_fill_swath();
     for s in &plan.swaths.swaths {
         let id = format!("{name}: swath {}", s.index);
         let line = shortened(&s.centre);

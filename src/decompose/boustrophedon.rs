@@ -110,14 +110,7 @@ impl BoustrophedonCells {
 /// numbers and areas, after the cells'.
 pub fn cluster_into_cells(swaths: &mut Swaths, cells: &BoustrophedonCells) {
     let frame = cells.frame;
-    let fill_from = swaths
-        .areas
-        .iter()
-        .filter(|a| a.fill)
-        .map(|a| a.swaths.start)
-        .min()
-        .unwrap_or(swaths.swaths.len())
-        .min(swaths.swaths.len());
+    let fill_from = swaths.first_fill_swath();
     let fill_swaths = swaths.swaths.split_off(fill_from);
     let fill_areas: Vec<SwathArea> = swaths.areas.iter().filter(|a| a.fill).cloned().collect();
     let mut keyed: Vec<(usize, Swath)> = swaths

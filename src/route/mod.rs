@@ -269,7 +269,7 @@ pub fn plan_route_on(
     let finish_on_headland = finishes_on_headland(graph, passes, settings);
     // The field's blocks first, then the blocks that fill what they leave (reached once the
     // crop round them is worked).
-    let fill_from = first_fill_swath(swaths);
+    let fill_from = swaths.first_fill_swath();
     let (field_blocks, fill_blocks): (Vec<usize>, Vec<usize>) = (0..blocks.blocks.len())
         .partition(|&b| blocks.blocks[b].swaths.iter().any(|&i| i < fill_from));
     // Once the field's swaths are worked, the machine may also drive along their tracks.
@@ -501,20 +501,6 @@ pub fn plan_route_on(
     route
 }
 
-/// The index of the first swath that fills what the others leave ([`SwathArea::fill`]): they
-/// come after the field's swaths. The number of swaths when there is none.
-///
-/// [`SwathArea::fill`]: crate::swath::SwathArea::fill
-fn first_fill_swath(swaths: &Swaths) -> usize {
-    swaths
-        .areas
-        .iter()
-        .filter(|a| a.fill)
-        .map(|a| a.swaths.start)
-        .min()
-        .unwrap_or(swaths.swaths.len())
-}
-
 /// The block order and the way of each block, and for each block and way of the order the way
 /// in `block_ways` it stands for and whether it ends by driving back along its last swath.
 ///
@@ -613,7 +599,7 @@ pub fn block_sequence_problem(
     }
     let (_, mut block_ways) = cheapest_ways(swaths, blocks, settings);
     // The field's blocks come first in `blocks` (see `cluster_swaths`).
-    let fill_from = first_fill_swath(swaths);
+    let fill_from = swaths.first_fill_swath();
     block_ways.truncate(
         blocks
             .blocks

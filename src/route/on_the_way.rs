@@ -295,7 +295,7 @@ mod tests {
     /// worked between the two, not after the eastern one (which would take the machine 200 m
     /// back and forth along the headland).
     #[test]
-    fn a_fill_block_beside_a_block_is_worked_on_the_way() {
+    fn a_fill_block_beside_a_block_is_worked_on_the_way() -> Result<(), crate::PlanError> {
         let ring = LineString::from(vec![
             (3.0, 3.0),
             (397.0, 3.0),
@@ -313,7 +313,7 @@ mod tests {
         let east =
             polygon![(x: 300., y: 12.), (x: 384., y: 12.), (x: 384., y: 88.), (x: 300., y: 88.)];
         let inner = MultiPolygon::new(vec![west, east]);
-        let mut swaths = generate(&inner, 0.0, 6.0, 6.0).unwrap();
+        let mut swaths = generate(&inner, 0.0, 6.0, 6.0)?;
         swaths.areas.push(SwathArea {
             swaths: 0..swaths.swaths.len(),
             bearing: 0.0,
@@ -323,7 +323,7 @@ mod tests {
         });
         let strip =
             polygon![(x: 99., y: 12.), (x: 105., y: 12.), (x: 105., y: 88.), (x: 99., y: 88.)];
-        let mut piece = generate(&MultiPolygon::new(vec![strip.clone()]), 0.0, 6.0, 6.0).unwrap();
+        let mut piece = generate(&MultiPolygon::new(vec![strip.clone()]), 0.0, 6.0, 6.0)?;
         assert_eq!(piece.swaths.len(), 1);
         piece.areas.push(SwathArea {
             swaths: 0..1,
@@ -349,5 +349,6 @@ mod tests {
             route.sequence.fill_cost_m
         );
         assert!(route.connections.iter().flatten().all(|c| !c.straight));
+        Ok(())
     }
 }
