@@ -27,7 +27,7 @@ fn direction_search(c: &mut Criterion) {
     let area = search_region(
         &field,
         o.obstacle_threshold_m(),
-        o.headland_passes as f64 * o.width,
+        o.headland_pass_count() as f64 * o.width,
         o.width,
     );
     let seeds = edge_directions(std::iter::once(field.boundary.exterior()), o.width / 2.0);

@@ -68,7 +68,7 @@ fn main() {
     if !fields_only {
         let options = PlanOptions {
             width: 6.0,
-            headland_passes: 2,
+            headland_passes: 2.into(),
             turn_radius: 8.0,
             ..PlanOptions::default()
         };

@@ -181,7 +181,7 @@ impl Row {
         Row {
             name: name.to_string(),
             width: o.width,
-            passes: o.headland_passes,
+            passes: o.headland_pass_count(),
             radius: o.turn_radius,
             field_area_ha: s.field_area_m2 / 1e4,
             decomposition: s.decomposition.method.as_str(),
@@ -633,7 +633,7 @@ fn scaling(quick: bool) -> Result<Scaling> {
     let centroid = boundary_centroid(&doc).ok_or("no boundary polygon in the scaling field")?;
     let options = |d: Decomposition| PlanOptions {
         width: SCALING_WIDTH,
-        headland_passes: SCALING_PASSES,
+        headland_passes: SCALING_PASSES.into(),
         turn_radius: SCALING_RADIUS,
         decomposition: d,
         ..PlanOptions::default()

@@ -25,6 +25,7 @@ import {
   dataset,
   fieldPasses,
   planKey,
+  planned,
   ready,
   reportCspViolations,
   setInput,
@@ -79,6 +80,34 @@ test("viewer: loads, draws, re-plans, switches fields, survives errors", { timeo
     const reduced = await page.evaluate(() => window.furrow.plan.warnings.map((w) => w.code));
     assert.ok(reduced.includes("headland_passes_reduced"), `warnings: ${reduced}`);
     assert.ok(Number((await dataset(page)).swathCount) > 0);
+
+    // Left empty, the passes are "auto": as deep as the loop a forward-only machine drives
+    // between neighbouring swaths, by its three circles of the turning radius (6 m swaths,
+    // 8 m radius: 8 + √(256 - 121) = 19.6 m, four passes), and the summary says so.
+    const machine = {
+      width: await page.inputValue("#width"),
+      turnRadius: await page.inputValue("#turnRadius"),
+      reverse: await page.inputValue("#reverse"),
+    };
+    const more = page.locator("#more-options");
+    if ((await more.getAttribute("open")) === null) await more.locator("summary").click();
+    await setInput(page, "width", 6);
+    await setInput(page, "turnRadius", 8);
+    await page.selectOption("#reverse", "false");
+    await setInput(page, "headlandPasses", "");
+    await planned(page);
+    const loopDepth = 8 + Math.sqrt(4 * 8 * 8 - (8 + 6 / 2) ** 2);
+    assert.equal(await page.evaluate(() => window.furrow.plan.summary.headland_passes), Math.ceil(loopDepth / 6));
+    assert.equal(await fieldPasses(page), 4);
+    assert.match(await page.textContent("#summary"), /Headland passes\s*4 \(auto\)/);
+    assert.equal(await page.evaluate(() => window.furrow.plan.summary.turns_outside_field), 0);
+    // Reversing, its cheapest turn stays within the radius: fewer passes.
+    await page.selectOption("#reverse", "true");
+    await planned(page);
+    assert.ok((await page.evaluate(() => window.furrow.plan.summary.headland_passes)) < 4);
+    await setInput(page, "width", machine.width);
+    await setInput(page, "turnRadius", machine.turnRadius);
+    await page.selectOption("#reverse", machine.reverse);
     await setInput(page, "headlandPasses", passes);
     await ready(page);
 

@@ -26,7 +26,7 @@
 //!
 //! let field = r#"{"type": "Polygon", "coordinates": [[[24.05, 60.25], [24.056, 60.25],
 //!     [24.056, 60.252], [24.05, 60.252], [24.05, 60.25]]]}"#;
-//! let options = PlanOptions { width: 6.0, headland_passes: 2, ..Default::default() };
+//! let options = PlanOptions { width: 6.0, headland_passes: 2.into(), ..Default::default() };
 //! let plan = plan_geojson(field, &options)?;
 //! assert!(plan.summary.swath_count > 0);
 //! let geojson: serde_json::Value = serde_json::from_str(&plan.to_geojson_string())?;

@@ -28,6 +28,9 @@ pub struct Summary {
     pub block_count: usize,
     /// Number of headland passes (a pass split at a neck counts once per part).
     pub headland_pass_count: usize,
+    /// Headland passes laid around the field: the count asked for, the count `auto` chose for
+    /// the machine's turns, or fewer where those left no inner field (with a warning).
+    pub headland_passes: u32,
     /// Distance driven working: swaths and headland passes.
     pub working_distance_m: f64,
     /// Of which along swaths.
@@ -334,6 +337,8 @@ pub fn summarise(
         turn_count: path.count_of(SegmentKind::Turn),
         block_count: blocks.blocks.len(),
         headland_pass_count: headlands.passes.len(),
+        // The plan's options give it (`assemble`).
+        headland_passes: 0,
         working_distance_m,
         swath_distance_m,
         headland_distance_m,

@@ -7,6 +7,7 @@ use crate::error::{ErrorCode, PlanError};
 use crate::field::place::{place_problem, range_problem, MAX_PLACE_DISTANCE_M};
 use crate::field::Coordinates;
 use crate::geometry::{forbids_every_direction, BearingRange};
+use crate::headland::passes::{passes_for_turns, HeadlandPasses};
 use crate::headland::{EdgePasses, HeadlandMode, HeadlandOrder};
 use crate::objective::{Machine, ObjectiveKind};
 use crate::route::pattern::SwathPattern;
@@ -34,8 +35,9 @@ pub struct PlanOptions {
     /// width of each headland pass.
     pub width: f64,
     /// Number of headland passes driven around the field boundary and around each obstacle that
-    /// gets a headland.
-    pub headland_passes: u32,
+    /// gets a headland, or `auto`: as many as the machine's turns need
+    /// ([`passes_for_turns`](crate::headland::passes::passes_for_turns)).
+    pub headland_passes: HeadlandPasses,
     /// Where the field headland runs: all around (`constant`), or only along edges where swaths
     /// end (`needed`).
     pub headland_mode: HeadlandMode,
@@ -134,7 +136,7 @@ impl Default for PlanOptions {
     fn default() -> Self {
         PlanOptions {
             width: 6.0,
-            headland_passes: 2,
+            headland_passes: HeadlandPasses::Count(2),
             headland_mode: HeadlandMode::Constant,
             headland_tolerance_deg: 5.0,
             edge_passes: Vec::new(),
@@ -201,8 +203,8 @@ pub const OPTION_DOCS: &[(&str, &str, &str)] = &[
     ),
     (
         "headlandPasses",
-        "count",
-        "number of headland passes around the field and around each obstacle that gets a headland (default 2)",
+        "count|auto",
+        "number of headland passes around the field and around each obstacle that gets a headland, or auto: as many as the machine's turns between neighbouring swaths need to stay inside the field (default 2)",
     ),
     (
         "headlandMode",
@@ -383,10 +385,14 @@ impl PlanOptions {
                 &format!("between {MIN_WIDTH_M} and {MAX_WIDTH_M} metres"),
             );
         }
-        if self.headland_passes > MAX_HEADLAND_PASSES {
+        if let Some(n) = self
+            .headland_passes
+            .count()
+            .filter(|&n| n > MAX_HEADLAND_PASSES)
+        {
             return out_of_range(
                 "headlandPasses",
-                self.headland_passes.to_string(),
+                n.to_string(),
                 &format!("at most {MAX_HEADLAND_PASSES}"),
             );
         }
@@ -612,6 +618,34 @@ impl PlanOptions {
         })?;
         options.validate()?;
         Ok(options)
+    }
+
+    /// The number of headland passes: as given, or for `auto` the fewest whose depth holds the
+    /// machine's turns between neighbouring swaths.
+    ///
+    /// ```
+    /// use furrow::headland::passes::HeadlandPasses;
+    /// use furrow::PlanOptions;
+    ///
+    /// let mower = PlanOptions { width: 3.0, turn_radius: 5.0, headland_passes: HeadlandPasses::Auto, ..Default::default() };
+    /// assert_eq!(mower.headland_pass_count(), 5);
+    /// let reversing = PlanOptions { reverse: true, ..mower.clone() };
+    /// assert!(reversing.headland_pass_count() < 5);
+    /// ```
+    pub fn headland_pass_count(&self) -> u32 {
+        match self.headland_passes {
+            HeadlandPasses::Count(n) => n,
+            HeadlandPasses::Auto => passes_for_turns(&self.vehicle(), MAX_HEADLAND_PASSES),
+        }
+    }
+
+    /// These options with `auto` headland passes replaced by their count; `None` when they
+    /// are a count already.
+    pub fn with_pass_count(&self) -> Option<PlanOptions> {
+        (self.headland_passes == HeadlandPasses::Auto).then(|| PlanOptions {
+            headland_passes: HeadlandPasses::Count(self.headland_pass_count()),
+            ..self.clone()
+        })
     }
 
     /// These options with what the field itself gives and the options leave out: its entrance,

@@ -102,7 +102,7 @@ impl Plan {
 /// let text = r#"{"type": "Polygon", "coordinates": [[[24.05, 60.25], [24.056, 60.25],
 ///     [24.056, 60.252], [24.05, 60.252], [24.05, 60.25]]]}"#;
 /// let (field, _) = Field::from_geojson_str(text)?;
-/// let options = PlanOptions { width: 6.0, headland_passes: 2, bearing_deg: Some(0.0), ..Default::default() };
+/// let options = PlanOptions { width: 6.0, headland_passes: 2.into(), bearing_deg: Some(0.0), ..Default::default() };
 /// let plan = plan(field, &options)?;
 /// // About 333 m east-west, less two 12 m headlands, in 6 m swaths running north; and short
 /// // swaths filling the corners the passes round off.
@@ -151,8 +151,11 @@ pub(crate) fn plan_stages(
     options: &PlanOptions,
     warnings: Vec<Warning>,
 ) -> Result<Plan, PlanError> {
+    // `auto` passes are counted once, from the machine: the plan reports the count laid.
+    let counted = options.with_pass_count();
+    let options = counted.as_ref().unwrap_or(options);
     // Kept for planning again with fewer passes (a copy of the outlines: far less than a plan).
-    let again = (options.headland_passes > 0).then(|| (field.clone(), warnings.clone()));
+    let again = (options.headland_pass_count() > 0).then(|| (field.clone(), warnings.clone()));
     let planned = plan_with_passes(field, options, warnings);
     let no_inner_field = match &planned {
         // Swaths that only fill what the passes leave are no inner field.
@@ -191,10 +194,10 @@ fn covers_more(a: &Plan, b: &Plan) -> bool {
 /// (found by halving, so that a count asked far beyond the field's room costs a few plans, not
 /// one per pass) and none.
 fn fewer_passes(field: &Field, options: &PlanOptions, warnings: &[Warning]) -> Option<Plan> {
-    let asked = options.headland_passes;
+    let asked = options.headland_pass_count();
     let with = |passes: u32| {
         let fewer = PlanOptions {
-            headland_passes: passes,
+            headland_passes: passes.into(),
             edge_passes: options
                 .edge_passes
                 .iter()
@@ -242,7 +245,7 @@ fn fewer_passes(field: &Field, options: &PlanOptions, warnings: &[Warning]) -> O
             "{asked} headland pass{} of {} m leave no inner field for swaths: {} laid, the number that covers most",
             if asked == 1 { "" } else { "es" },
             options.width,
-            plan.options.headland_passes,
+            plan.options.headland_pass_count(),
         ),
     ));
     Some(plan)
@@ -343,7 +346,7 @@ fn clean_field(field: &mut Field, options: &PlanOptions) -> Result<Vec<Warning>,
         .edge_passes
         .iter()
         .map(|e| e.passes)
-        .fold(options.headland_passes, u32::max);
+        .fold(options.headland_pass_count(), u32::max);
     check_offsets(
         &field.boundary,
         &obstacles,
@@ -470,7 +473,7 @@ fn choose_direction(
             let area = search_region(
                 field,
                 options.obstacle_threshold_m(),
-                options.headland_passes as f64 * width,
+                options.headland_pass_count() as f64 * width,
                 width,
             );
             let seeds = edge_directions(std::iter::once(field.boundary.exterior()), width / 2.0);
@@ -498,7 +501,7 @@ fn lay_headlands(
         &field.drawn_boundary,
         &EdgeRule {
             mode: options.headland_mode,
-            passes: options.headland_passes,
+            passes: options.headland_pass_count(),
             bearing,
             tolerance: options.headland_tolerance_deg.to_radians(),
         },
@@ -510,7 +513,7 @@ fn lay_headlands(
             bearing,
             width,
             threshold: options.obstacle_threshold_m(),
-            obstacle_passes: options.headland_passes,
+            obstacle_passes: options.headland_pass_count(),
             edge_passes: &edge_passes,
         },
     );
@@ -520,12 +523,14 @@ fn lay_headlands(
         &HeadlandSettings {
             width,
             turn_radius: options.turn_radius,
-            obstacle_passes: options.headland_passes,
+            obstacle_passes: options.headland_pass_count(),
             edge_passes: &edge_passes,
         },
     )
     .map_err(|e| e.at_feature(field.feature))?;
-    let all_around = edge_passes.iter().all(|&p| p >= options.headland_passes);
+    let all_around = edge_passes
+        .iter()
+        .all(|&p| p >= options.headland_pass_count());
     Ok((obstacles, headlands, all_around))
 }
 
@@ -574,6 +579,7 @@ fn assemble(
     } = chosen;
     summary.decomposition = decomposition;
     summary.route.pattern = options.pattern;
+    summary.headland_passes = options.headland_pass_count();
     warnings.extend(own_warnings);
     Plan {
         field,

@@ -330,13 +330,13 @@ fn every_invalid_input_is_covered() {
 fn every_real_parcel_plans_with_the_passes_that_leave_it_swaths() {
     let drill = PlanOptions {
         width: 6.0,
-        headland_passes: 2,
+        headland_passes: 2.into(),
         turn_radius: 8.0,
         ..PlanOptions::default()
     };
     let sprayer = PlanOptions {
         width: 24.0,
-        headland_passes: 1,
+        headland_passes: 1.into(),
         turn_radius: 9.0,
         ..PlanOptions::default()
     };
@@ -364,7 +364,7 @@ fn every_real_parcel_plans_with_the_passes_that_leave_it_swaths() {
             // With fewer passes than asked only where the passes asked for leave no swath, and
             // then with a warning.
             assert_eq!(
-                plan.options.headland_passes < options.headland_passes,
+                plan.options.headland_pass_count() < options.headland_pass_count(),
                 warned,
                 "{at}"
             );
@@ -409,7 +409,7 @@ fn a_strip_too_narrow_for_its_headland_is_worked_with_fewer_passes() {
         r#"{"type": "Polygon", "coordinates": [[[0, 0], [300, 0], [300, 20], [0, 20], [0, 0]]]}"#;
     let options = PlanOptions {
         width: 6.0,
-        headland_passes: 2,
+        headland_passes: 2.into(),
         turn_radius: 8.0,
         coordinates: furrow::field::Coordinates::Metric,
         ..PlanOptions::default()
@@ -421,7 +421,7 @@ fn a_strip_too_narrow_for_its_headland_is_worked_with_fewer_passes() {
         .find(|w| w.code == furrow::WarningCode::HeadlandPassesReduced)
         .expect("warned of the passes laid");
     assert!(warning.message.contains("0 laid"), "{}", warning.message);
-    assert_eq!(plan.options.headland_passes, 0);
+    assert_eq!(plan.options.headland_pass_count(), 0);
     // Three or four swaths along the strip cover it (the planner's own figure, and the swaths'
     // lengths: the strip is 300 m long and 20 m wide).
     let swath_length: f64 = plan.swaths.swaths.iter().map(|s| s.length()).sum();
@@ -435,7 +435,7 @@ fn a_strip_too_narrow_for_its_headland_is_worked_with_fewer_passes() {
     // The same field without the fallback's cause: one pass leaves an inner field, and is kept.
     let wide = strip.replace("20]", "60]");
     let plan = plan_geojson(&wide, &options).expect("a 60 m strip plans at 6 m");
-    assert_eq!(plan.options.headland_passes, 2);
+    assert_eq!(plan.options.headland_pass_count(), 2);
     assert!(plan
         .warnings
         .iter()
@@ -464,7 +464,7 @@ fn rectangle_acceptance_case() {
     let text = std::fs::read_to_string(fields_dir().join("rectangle.geojson")).expect("readable");
     let options = PlanOptions {
         width: 6.0,
-        headland_passes: 2,
+        headland_passes: 2.into(),
         ..PlanOptions::default()
     };
     let plan = plan_field(&text, &options);

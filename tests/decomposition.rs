@@ -420,7 +420,7 @@ fn split_merge_is_left_out_of_fields_of_too_many_cells() {
     let text = obstacle_grid(20, 10);
     let options = PlanOptions {
         coordinates: furrow::field::Coordinates::Metric,
-        headland_passes: 0,
+        headland_passes: 0.into(),
         decomposition: Decomposition::SplitMerge,
         ..PlanOptions::default()
     };

@@ -10,6 +10,7 @@
 mod common;
 
 use common::corpus::valid_fields;
+use furrow::headland::passes::HeadlandPasses;
 use furrow::{plan_geojson, ErrorCode, PlanOptions};
 use proptest::prelude::*;
 use serde_json::{json, Value};
@@ -57,7 +58,12 @@ fn options() -> impl Strategy<Value = PlanOptions> {
         .prop_map(
             |(width, headland_passes, bearing_deg, forbidden)| PlanOptions {
                 width,
-                headland_passes,
+                // The last count stands for `auto`.
+                headland_passes: if headland_passes == 5 {
+                    HeadlandPasses::Auto
+                } else {
+                    headland_passes.into()
+                },
                 bearing_deg,
                 forbidden_bearings_deg: forbidden.into_iter().map(|(a, b)| [a, b].into()).collect(),
                 ..PlanOptions::default()

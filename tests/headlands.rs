@@ -8,9 +8,11 @@ mod common;
 
 use common::corpus::valid_fields;
 use furrow::geometry::point_segment_distance;
+use furrow::headland::passes::HeadlandPasses;
 use furrow::headland::{HeadlandMode, HeadlandOrder, PassAround};
 use furrow::obstacles::ObstacleClass;
 use furrow::path::SegmentKind;
+use furrow::route::pattern::SwathPattern;
 use furrow::{plan_geojson, Plan, PlanOptions};
 use geo::{Area, BooleanOps, BoundingRect, Coord, Intersects, LineString, Polygon, Rect};
 use proptest::prelude::*;
@@ -92,7 +94,7 @@ fn followed(plan: &Plan, k: usize) -> Vec<LineString> {
         .filter(|(_, &n)| n as usize >= k)
         .map(|(e, _)| LineString::new(vec![ring[e], ring[e + 1]]))
         .collect();
-    if plan.options.headland_passes as usize >= k {
+    if plan.options.headland_pass_count() as usize >= k {
         out.extend(
             plan.obstacles
                 .hole_polygons()
@@ -622,7 +624,7 @@ fn a_sharp_corner_is_rounded_to_the_turning_radius_and_its_crop_reported() {
     let text = r#"{"type": "Polygon", "coordinates": [[[0, 0], [300, 0], [0, 173.2], [0, 0]]]}"#;
     let options = |r: f64| PlanOptions {
         width: 6.0,
-        headland_passes: 2,
+        headland_passes: 2.into(),
         turn_radius: r,
         coordinates: furrow::field::Coordinates::Metric,
         ..PlanOptions::default()
@@ -648,7 +650,7 @@ fn a_narrow_neck_splits_passes_and_passes_that_find_no_room_vanish() {
         [150, 0], [250, 0], [250, 100], [150, 100], [150, 60], [100, 60], [100, 100], [0, 100], [0, 0]]]}"#;
     let options = PlanOptions {
         width: 6.0,
-        headland_passes: 2,
+        headland_passes: 2.into(),
         turn_radius: 8.0,
         coordinates: furrow::field::Coordinates::Metric,
         ..PlanOptions::default()
@@ -723,7 +725,7 @@ proptest! {
     ) {
         let options = PlanOptions {
             width,
-            headland_passes: passes,
+            headland_passes: passes.into(),
             turn_radius,
             headland_mode: if needed { HeadlandMode::Needed } else { HeadlandMode::Constant },
             coordinates: furrow::field::Coordinates::Metric,
@@ -760,11 +762,91 @@ fn a_pass_round_merged_obstacles_keeps_its_concave_cusp_at_the_cut_neck() {
     ];
     let options = PlanOptions {
         width: 2.9262439287833057,
-        headland_passes: 1,
+        headland_passes: 1.into(),
         turn_radius: 13.969005704892062,
         coordinates: furrow::field::Coordinates::Metric,
         ..PlanOptions::default()
     };
     let p = plan(&star_field(&radii, &obstacles), &options, "two obstacles");
     check_headlands(&p, "two obstacles");
+}
+
+/// How many points of the turns of `p` (as the plan's GeoJSON gives them) lie outside `field`
+/// by more than a millimetre.
+fn turn_points_outside(p: &Plan, field: &Polygon) -> usize {
+    let json: serde_json::Value = serde_json::from_str(&p.to_geojson_string()).unwrap_or_default();
+    let features = json["features"].as_array().cloned().unwrap_or_default();
+    let turns: Vec<&serde_json::Value> = features
+        .iter()
+        .filter(|f| f["properties"]["kind"] == "turn")
+        .collect();
+    assert!(!turns.is_empty());
+    turns
+        .iter()
+        .flat_map(|f| {
+            f["geometry"]["coordinates"]
+                .as_array()
+                .cloned()
+                .unwrap_or_default()
+        })
+        .map(|c| Coord {
+            x: c[0].as_f64().unwrap_or(f64::NAN),
+            y: c[1].as_f64().unwrap_or(f64::NAN),
+        })
+        .filter(|&c| {
+            !field.intersects(&geo::Point(c))
+                && dist_to_lines(c, &[field.exterior().clone()]) > 1e-3
+        })
+        .count()
+}
+
+#[test]
+fn auto_headland_passes_hold_the_machines_turns() {
+    // A field whose northern edge is slanted across the swaths.
+    let corners = [
+        (0.0, 0.0),
+        (150.0, 0.0),
+        (150.0, 260.0),
+        (0.0, 200.0),
+        (0.0, 0.0),
+    ];
+    let field = Polygon::new(LineString::from(corners.to_vec()), vec![]);
+    let text =
+        r#"{"type": "Polygon", "coordinates": [[[0, 0], [150, 0], [150, 260], [0, 200], [0, 0]]]}"#;
+    // Swath after swath: every turn joins neighbours 3 m apart.
+    let mower = |passes: HeadlandPasses, reverse: bool| PlanOptions {
+        pattern: SwathPattern::Boustrophedon,
+        width: 3.0,
+        turn_radius: 5.0,
+        reverse,
+        headland_passes: passes,
+        bearing_deg: Some(0.0),
+        coordinates: furrow::field::Coordinates::Metric,
+        ..PlanOptions::default()
+    };
+    // Two passes (6 m) do not hold the loop a forward-only mower drives between neighbours: its
+    // three circles of 5 m reach 5 + √(100 - 42.25) = 12.6 m beyond the swath ends.
+    let two = plan(text, &mower(2.into(), false), "two passes");
+    assert!(two.summary.turns_outside_field > 0);
+    assert!(turn_points_outside(&two, &field) > 0);
+    // Auto lays ceil(12.6 / 3) = 5, and every turn stays inside.
+    let auto = plan(text, &mower(HeadlandPasses::Auto, false), "auto");
+    assert_eq!(auto.summary.headland_passes, 5);
+    assert_eq!(auto.options.headland_passes, HeadlandPasses::Count(5));
+    assert_eq!(auto.summary.turns_outside_field, 0);
+    assert_eq!(turn_points_outside(&auto, &field), 0);
+    check_headlands(&auto, "auto");
+    // Reversing, it turns within its radius of the swath ends: fewer passes, still inside.
+    let reversing = plan(text, &mower(HeadlandPasses::Auto, true), "auto reversing");
+    assert!(reversing.summary.headland_passes < 5);
+    assert_eq!(reversing.summary.turns_outside_field, 0);
+    assert_eq!(turn_points_outside(&reversing, &field), 0);
+    // Whatever order `auto` takes, its turns fit too.
+    let any_order = PlanOptions {
+        pattern: SwathPattern::Auto,
+        ..mower(HeadlandPasses::Auto, false)
+    };
+    let any_order = plan(text, &any_order, "auto pattern");
+    assert_eq!(any_order.summary.turns_outside_field, 0);
+    assert_eq!(turn_points_outside(&any_order, &field), 0);
 }

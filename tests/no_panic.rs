@@ -6,6 +6,7 @@
 //! The regular suite runs a few hundred cases; set PROPTEST_CASES for a long run.
 
 use furrow::direction::{DirectionMode, SearchMethod};
+use furrow::headland::passes::HeadlandPasses;
 use furrow::headland::{HeadlandMode, HeadlandOrder};
 use furrow::objective::ObjectiveKind;
 use furrow::{plan_geojson, ErrorCode, PlanOptions};
@@ -95,7 +96,12 @@ fn options() -> impl Strategy<Value = PlanOptions> {
                 reference_edge: reference.filter(|_| bearing_deg.is_none()).map(|r| r.0),
                 reference_offset: reference.map(|r| r.1),
                 width,
-                headland_passes,
+                // The last count stands for `auto`.
+                headland_passes: if headland_passes == 7 {
+                    HeadlandPasses::Auto
+                } else {
+                    headland_passes.into()
+                },
                 turn_radius,
                 bearing_deg,
                 min_swath_length,
@@ -256,7 +262,7 @@ fn a_block_through_the_point_where_two_parts_touch_is_taken_out() {
     );
     let options = PlanOptions {
         width: 8.39364235456811,
-        headland_passes: 0,
+        headland_passes: 0.into(),
         turn_radius: 0.0,
         search_step_deg: 7.0,
         ..PlanOptions::default()

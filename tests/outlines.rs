@@ -147,7 +147,7 @@ proptest! {
         let options = PlanOptions {
             width,
             coordinates: place.coordinates(),
-            headland_passes: 1,
+            headland_passes: 1.into(),
             turn_radius: width.min(8.0),
             decomposition: furrow::decompose::Decomposition::None,
             ..PlanOptions::default()
@@ -349,7 +349,7 @@ fn a_thin_wedge_plans() {
     let options = PlanOptions {
         coordinates: Coordinates::Metric,
         width: 2.0,
-        headland_passes: 0,
+        headland_passes: 0.into(),
         turn_radius: 1.0,
         ..PlanOptions::default()
     };

@@ -218,9 +218,9 @@ fn turns_stay_in_the_field_or_are_reported_with_their_cause() {
             }
             // Where the headland has room for a turn (two passes or more, at least one turning
             // radius deep) and the machine may reverse, every turn stays in.
-            let depth = options.headland_passes as f64 * options.width;
+            let depth = options.headland_pass_count() as f64 * options.width;
             if machine == "reversing"
-                && options.headland_passes >= 2
+                && options.headland_pass_count() >= 2
                 && depth >= options.turn_radius
             {
                 assert_eq!(

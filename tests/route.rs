@@ -320,7 +320,7 @@ fn connections_never_cross_the_inner_field_on_any_corpus_field() {
 fn connections_along_the_headland_never_cross_the_crop_of_register_parcels() {
     let options = PlanOptions {
         width: 12.0,
-        headland_passes: 1,
+        headland_passes: 1.into(),
         turn_radius: 9.0,
         ..PlanOptions::default()
     };

@@ -270,7 +270,7 @@ fn reference_edge_and_line_put_the_swaths_on_their_grid() {
         r#"{"type": "Polygon", "coordinates": [[[0, 0], [200, 0], [200, 120], [0, 120], [0, 0]]]}"#;
     let base = PlanOptions {
         width: 6.0,
-        headland_passes: 2,
+        headland_passes: 2.into(),
         coordinates: furrow::field::Coordinates::Metric,
         ..PlanOptions::default()
     };
@@ -347,7 +347,7 @@ fn coarse_to_fine_is_within_one_percent_of_brute_force_on_95_percent_of_fields()
         .collect();
     let real = PlanOptions {
         width: 6.0,
-        headland_passes: 2,
+        headland_passes: 2.into(),
         turn_radius: 8.0,
         ..PlanOptions::default()
     };
@@ -509,7 +509,7 @@ fn too_many_swath_lines_to_search_follow_the_longest_edge() {
     let text = r#"{"type": "Polygon", "coordinates": [[[0, 0], [2000, 0], [2000, 300], [0, 300], [0, 0]]]}"#;
     let options = PlanOptions {
         width: 0.2,
-        headland_passes: 1,
+        headland_passes: 1.into(),
         turn_radius: 0.5,
         coordinates: furrow::field::Coordinates::Metric,
         ..PlanOptions::default()
@@ -562,7 +562,7 @@ fn outlines_of_too_many_vertices_to_search_follow_the_longest_edge() {
         )
     };
     let options = PlanOptions {
-        headland_passes: 0,
+        headland_passes: 0.into(),
         coordinates: furrow::field::Coordinates::Metric,
         ..PlanOptions::default()
     };

@@ -9,6 +9,7 @@ const CHOICES = new Set(["headlandMode", "headlandOrder", "objective", "search",
 const BOOLEANS = new Set(["reverse"]); // <select>s of "true" and "false"
 const OPTIONAL = new Set(["bearing", "obstacleThreshold", "referenceEdge", "curvatureRate"]); // empty: null, the planner's default
 const TEXTS = new Set(["forbiddenBearings"]); // read by their own parser
+const AUTO = new Set(["headlandPasses"]); // empty: "auto", the planner works the number out
 const SETTINGS_KEY = "furrow.settings";
 const SESSION_KEY = "furrow.session";
 const KEPT_INPUTS = [...OPTION_INPUTS, "drive-speed", "tile-url", "way-turning"]; // what persists across visits
@@ -37,6 +38,10 @@ export function readOptions() {
     const badInput = input.validity.badInput; // text the number input cannot read, e.g. "1e"
     if (OPTIONAL.has(id) && text === "" && !badInput) {
       options[id] = null;
+      continue;
+    }
+    if (AUTO.has(id) && text === "" && !badInput) {
+      options[id] = "auto";
       continue;
     }
     const value = Number(text);

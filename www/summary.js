@@ -27,7 +27,14 @@ export function renderSummary(s, options, callMs) {
       decompositionText(s.decomposition),
       { key: "decomposition", title: s.decomposition?.reason ?? "" },
     ],
-    ["Headland passes", s.headland_pass_count, { key: "headland_pass_count" }],
+    [
+      "Headland passes",
+      `${s.headland_passes ?? 0}${options.headlandPasses === "auto" ? " (auto)" : ""}`,
+      {
+        key: "headland_passes",
+        title: "Passes around the field; auto: as many as the machine's turns between neighbouring swaths need",
+      },
+    ],
     ["Working distance", km(s.working_distance_m), { key: "working_distance_m" }],
     ["Turning distance", km(s.turning_distance_m), { key: "turning_distance_m" }],
     [

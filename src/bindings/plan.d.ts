@@ -77,10 +77,12 @@ export interface PlanOptions {
   /** Working width of the implement, metres: swath spacing and headland pass width. Default 6. */
   width?: number;
   /**
-   * Number of headland passes around the field and around each obstacle that gets a headland.
-   * Default 2.
+   * Number of headland passes around the field and around each obstacle that gets a headland,
+   * or `"auto"`: as many as the machine's turns between neighbouring swaths need to stay inside
+   * the field (from `width`, `turnRadius`, `reverse` and `curvatureRate`). The plan reports the
+   * number laid in `summary.headland_passes`. Default 2.
    */
-  headlandPasses?: number;
+  headlandPasses?: number | "auto";
   /**
    * Where the field headland runs: `"constant"`, all around the field, or `"needed"`, only along
    * edges where swaths end. Default `"constant"`.
@@ -323,7 +325,13 @@ export interface PlanSummary {
   swath_count: number;
   turn_count: number;
   block_count: number;
+  /** Headland passes (rings) in the plan's headland, a pass split at a neck counting once per part. */
   headland_pass_count: number;
+  /**
+   * Headland passes laid around the field: the count asked for, the count `"auto"` chose, or
+   * fewer where those left no inner field (with a `headland_passes_reduced` warning).
+   */
+  headland_passes: number;
   /** Swaths and headland passes. */
   working_distance_m: number;
   swath_distance_m: number;

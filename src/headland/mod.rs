@@ -23,6 +23,7 @@
 pub mod complexity;
 pub mod edges;
 pub mod offset;
+pub mod passes;
 
 pub use edges::{EdgePasses, HeadlandMode};
 

@@ -276,7 +276,7 @@ fn lay_split_merge(prep: &Prepared, sm: SplitMerge) -> Result<Laid, PlanError> {
     let cut = cut_block_headlands(
         &sm.blocks,
         width,
-        options.headland_passes,
+        options.headland_pass_count(),
         &options.forbidden_bearings_deg,
         &field.prohibited,
     );
@@ -501,7 +501,7 @@ fn turns_leaving(path: &Path, options: &PlanOptions) -> Option<Warning> {
         return None;
     }
     let reach = outside.iter().map(|t| t.reach_m).fold(0.0, f64::max);
-    let depth = options.headland_passes as f64 * options.width;
+    let depth = options.headland_pass_count() as f64 * options.width;
     let hint = if options.reverse {
         ""
     } else {
@@ -688,7 +688,7 @@ fn swaths_of(
     area: &geo::MultiPolygon,
     settings: &SwathSettings,
 ) -> Result<Swaths, PlanError> {
-    if options.headland_passes == 0 {
+    if options.headland_pass_count() == 0 {
         generate_within(area, settings)
     } else {
         generate_with(area, settings)
@@ -711,7 +711,7 @@ mod tests {
         let text = std::fs::read_to_string(path).expect("the corpus copy");
         let options = PlanOptions {
             width: 12.0,
-            headland_passes: 1,
+            headland_passes: 1.into(),
             turn_radius: 6.0,
             decomposition: Decomposition::None,
             ..PlanOptions::default()

@@ -749,7 +749,7 @@ mod tests {
         let num = |i: usize| -> f64 { cells[i].parse().expect("a number") };
         PlanOptions {
             width: num(6),
-            headland_passes: num(7) as u32,
+            headland_passes: (num(7) as u32).into(),
             turn_radius: num(8),
             ..PlanOptions::default()
         }

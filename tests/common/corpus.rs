@@ -46,7 +46,7 @@ pub fn valid_fields() -> Vec<CorpusField> {
             obstacles: num(4) as usize,
             options: PlanOptions {
                 width: num(6),
-                headland_passes: num(7) as u32,
+                headland_passes: (num(7) as u32).into(),
                 turn_radius: num(8),
                 ..PlanOptions::default()
             },

@@ -1,0 +1,250 @@
+//! How many headland passes: the option's count, or (`headlandPasses: "auto"`) as many as the
+//! machine's turns need.
+//!
+//! Swaths end at the inner edge of the headland, `h·w` inside the boundary for `h` passes of
+//! width `w`. A turn from one swath end to the next reaches beyond the ends by a depth that
+//! depends on the machine and on the spacing of the swath ends it joins: a U-turn of radius `r`
+//! reaches `r` beyond them, the loop a forward-only machine drives between neighbours closer
+//! than `2r` reaches further (up to about `2.7 r`), a three-point turn `r`, and a reversing
+//! machine's cheapest turn between neighbours often backs into the swath it came from and reaches
+//! no further than the ends. The turn stays inside
+//! the field when the headland is at least that deep, so `h` is that depth in widths, rounded up.
+//!
+//! The spacing is one width: every swath order (boustrophedon, snake, spiral) turns between
+//! neighbouring swaths somewhere, and those turns are the deepest.
+
+use crate::path::curve::{Pose, Segment};
+use crate::path::turn::{chord_poses, Vehicle};
+use serde::de::{self, Visitor};
+use serde::{Deserialize, Deserializer, Serialize, Serializer};
+use std::fmt;
+
+/// The number of headland passes asked for: a count, or `auto` for the fewest passes of the
+/// machine's width whose depth holds its turns between neighbouring swaths
+/// ([`passes_for_turns`]). In JSON a number or `"auto"`.
+///
+/// ```
+/// use furrow::headland::passes::HeadlandPasses;
+///
+/// let auto: HeadlandPasses = serde_json::from_str(r#""auto""#)?;
+/// assert_eq!(auto, HeadlandPasses::Auto);
+/// assert_eq!(serde_json::from_str::<HeadlandPasses>("3")?, HeadlandPasses::Count(3));
+/// assert_eq!(HeadlandPasses::from(2).count(), Some(2));
+/// assert!(serde_json::from_str::<HeadlandPasses>(r#""many""#).is_err());
+/// # Ok::<(), serde_json::Error>(())
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum HeadlandPasses {
+    /// This many passes.
+    Count(u32),
+    /// As many as the machine's turns need.
+    Auto,
+}
+
+impl HeadlandPasses {
+    /// The count, `None` for `auto`.
+    pub fn count(self) -> Option<u32> {
+        match self {
+            HeadlandPasses::Count(n) => Some(n),
+            HeadlandPasses::Auto => None,
+        }
+    }
+}
+
+impl From<u32> for HeadlandPasses {
+    fn from(n: u32) -> Self {
+        HeadlandPasses::Count(n)
+    }
+}
+
+impl Serialize for HeadlandPasses {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        match self {
+            HeadlandPasses::Count(n) => serializer.serialize_u32(*n),
+            HeadlandPasses::Auto => serializer.serialize_str("auto"),
+        }
+    }
+}
+
+impl<'de> Deserialize<'de> for HeadlandPasses {
+    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        deserializer.deserialize_any(PassesVisitor)
+    }
+}
+
+/// Reads a count of passes or `"auto"`.
+struct PassesVisitor;
+
+impl Visitor<'_> for PassesVisitor {
+    type Value = HeadlandPasses;
+
+    fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
+        f.write_str("a whole number of passes or \"auto\"")
+    }
+
+    fn visit_u64<E: de::Error>(self, n: u64) -> Result<HeadlandPasses, E> {
+        u32::try_from(n)
+            .map(HeadlandPasses::Count)
+            .map_err(|_| E::invalid_value(de::Unexpected::Unsigned(n), &self))
+    }
+
+    fn visit_i64<E: de::Error>(self, n: i64) -> Result<HeadlandPasses, E> {
+        u64::try_from(n)
+            .map_err(|_| E::invalid_value(de::Unexpected::Signed(n), &self))
+            .and_then(|n| self.visit_u64(n))
+    }
+
+    fn visit_str<E: de::Error>(self, s: &str) -> Result<HeadlandPasses, E> {
+        if s == "auto" {
+            Ok(HeadlandPasses::Auto)
+        } else {
+            Err(E::invalid_value(de::Unexpected::Str(s), &self))
+        }
+    }
+}
+
+/// How far the machine's cheapest turn between two swath ends `spacing` apart reaches beyond
+/// them, metres (along the swaths, past the line through both ends).
+///
+/// ```
+/// use furrow::headland::passes::turn_depth;
+/// use furrow::path::turn::Vehicle;
+///
+/// // Swaths 20 m apart and a radius of 8 m: a U-turn, as deep as its radius.
+/// let wide = Vehicle { width: 20.0, turn_radius: 8.0, ..Default::default() };
+/// assert!((turn_depth(&wide, 20.0) - 8.0).abs() < 0.01);
+/// // Neighbours 6 m apart: the forward-only machine loops round, much deeper.
+/// let drill = Vehicle { width: 6.0, turn_radius: 8.0, reverse: false, ..Default::default() };
+/// assert!(turn_depth(&drill, 6.0) > 16.0);
+/// ```
+pub fn turn_depth(vehicle: &Vehicle, spacing: f64) -> f64 {
+    if vehicle.pivots() || !(spacing.is_finite() && spacing > 0.0) {
+        return 0.0;
+    }
+    // Out of a swath heading north at the origin, into the next one east of it heading south.
+    let from = Pose::new(0.0, 0.0, std::f64::consts::FRAC_PI_2);
+    let to = Pose::new(spacing, 0.0, -std::f64::consts::FRAC_PI_2);
+    let turn = vehicle.shortest(from, to);
+    reach_north(&turn.segments)
+}
+
+/// The northernmost point of a run of segments (0 at least).
+fn reach_north(segments: &[Segment]) -> f64 {
+    segments
+        .iter()
+        .flat_map(chord_poses)
+        .map(|(p, _)| p.y)
+        .fold(0.0, f64::max)
+}
+
+/// Headland passes of the machine's width deep enough for its turns between neighbouring
+/// swaths: at least one, at most `most`.
+///
+/// ```
+/// use furrow::headland::passes::passes_for_turns;
+/// use furrow::path::turn::Vehicle;
+///
+/// // A 3 m mower turning at 5 m loops round between neighbours, 12.6 m deep: five passes.
+/// let mower = Vehicle { width: 3.0, turn_radius: 5.0, ..Default::default() };
+/// assert_eq!(passes_for_turns(&mower, 50), 5);
+/// // A 24 m sprayer turning at 9 m makes a U-turn 9 m deep: one pass.
+/// let sprayer = Vehicle { width: 24.0, turn_radius: 9.0, ..Default::default() };
+/// assert_eq!(passes_for_turns(&sprayer, 50), 1);
+/// ```
+pub fn passes_for_turns(vehicle: &Vehicle, most: u32) -> u32 {
+    let width = vehicle.width;
+    if !(width.is_finite() && width > 0.0) {
+        return 1;
+    }
+    let depth = turn_depth(vehicle, width);
+    // A millimetre's grace, so that a depth of exactly whole widths is not one pass more.
+    let passes = ((depth - 1e-3) / width).ceil();
+    if passes.is_finite() {
+        (passes as u32).clamp(1, most.max(1))
+    } else {
+        most.max(1)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn machine(width: f64, turn_radius: f64, reverse: bool) -> Vehicle {
+        Vehicle {
+            width,
+            turn_radius,
+            reverse,
+            ..Default::default()
+        }
+    }
+
+    /// The loop between ends `s` apart, by its three circles of radius `r`: the outer two
+    /// centred `r` beyond each end sideways, the middle one touching both, `r` deeper than its
+    /// centre.
+    fn loop_depth(s: f64, r: f64) -> f64 {
+        r + (4.0 * r * r - (r + s / 2.0).powi(2)).sqrt()
+    }
+
+    #[test]
+    fn a_forward_machine_loops_between_close_swaths_and_u_turns_between_far_ones() {
+        for r in [3.0, 5.0, 8.0, 12.5] {
+            for k in 1..40 {
+                let s = r * k as f64 / 10.0;
+                let depth = turn_depth(&machine(s, r, false), s);
+                let expected = if s < 2.0 * r { loop_depth(s, r) } else { r };
+                assert!(
+                    (depth - expected).abs() < 0.01,
+                    "r {r}, spacing {s}: {depth} against {expected}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn a_reversing_machine_needs_no_more_than_its_radius() {
+        for (w, r) in [(3.0, 5.0), (6.0, 8.0), (2.0, 12.0)] {
+            let depth = turn_depth(&machine(w, r, true), w);
+            assert!(depth <= r + 0.01, "{w} m, r {r}: {depth}");
+            assert!(
+                passes_for_turns(&machine(w, r, true), 50)
+                    < passes_for_turns(&machine(w, r, false), 50)
+            );
+        }
+    }
+
+    #[test]
+    fn passes_hold_the_depth_and_no_more() {
+        for (w, r) in [(3.0, 5.0), (6.0, 8.0), (24.0, 9.0), (12.0, 6.0), (0.5, 2.0)] {
+            let v = machine(w, r, false);
+            let n = passes_for_turns(&v, 50) as f64;
+            let depth = turn_depth(&v, w);
+            assert!(
+                n * w >= depth - 1e-3 && (n - 1.0) * w < depth,
+                "{w} m, r {r}: {n}"
+            );
+        }
+        // The bounds: at least one pass, at most the limit.
+        assert_eq!(passes_for_turns(&machine(6.0, 0.0, false), 50), 1);
+        assert_eq!(passes_for_turns(&machine(0.1, 200.0, false), 50), 50);
+        assert_eq!(passes_for_turns(&machine(f64::NAN, 5.0, false), 50), 1);
+    }
+
+    #[test]
+    fn json_is_a_count_or_auto() {
+        let read = serde_json::from_str::<HeadlandPasses>;
+        assert_eq!(read("0").ok(), Some(HeadlandPasses::Count(0)));
+        assert_eq!(read("\"auto\"").ok(), Some(HeadlandPasses::Auto));
+        for bad in ["-1", "2.5", "\"Auto\"", "null", "[2]", "4294967296"] {
+            let e = read(bad).err().map(|e| e.to_string()).unwrap_or_default();
+            assert!(
+                e.contains("a whole number of passes or \"auto\""),
+                "{bad}: {e}"
+            );
+        }
+        for p in [HeadlandPasses::Count(7), HeadlandPasses::Auto] {
+            let text = serde_json::to_string(&p).unwrap_or_default();
+            assert_eq!(serde_json::from_str::<HeadlandPasses>(&text).ok(), Some(p));
+        }
+    }
+}
