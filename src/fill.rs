@@ -138,15 +138,27 @@ fn fill_part(part: &Polygon, centres: &MultiPolygon, settings: &FillSettings) ->
     if lanes.unsigned_area() <= 0.0 {
         return None;
     }
+    let reached = |s: &crate::swath::Swath| {
+        (settings.reachable)(s.centre.start) || (settings.reachable)(s.centre.end)
+    };
     let mut best: Option<Swaths> = None;
+    // Where no direction reaches all its pieces, the one whose reachable pieces are longest.
+    let mut partly: Option<Swaths> = None;
     for bearing in directions(&core, &near, settings) {
         let Some(swaths) = pieces_at(&core, &lanes, bearing, w, settings.min_length) else {
             continue;
         };
-        let reached = |s: &crate::swath::Swath| {
-            (settings.reachable)(s.centre.start) || (settings.reachable)(s.centre.end)
-        };
         if !swaths.swaths.iter().all(reached) {
+            if best.is_none() {
+                if let Some(some) = reached_only(swaths, &reached) {
+                    if partly
+                        .as_ref()
+                        .is_none_or(|p| length(&some) > length(p) + 1e-6)
+                    {
+                        partly = Some(some);
+                    }
+                }
+            }
             continue;
         }
         let better = best.as_ref().is_none_or(|b| {
@@ -157,7 +169,7 @@ fn fill_part(part: &Polygon, centres: &MultiPolygon, settings: &FillSettings) ->
             best = Some(swaths);
         }
     }
-    let mut swaths = best?;
+    let mut swaths = best.or(partly)?;
     let area = strips(&swaths, w);
     swaths.areas.push(SwathArea {
         swaths: 0..swaths.swaths.len(),
@@ -167,6 +179,29 @@ fn fill_part(part: &Polygon, centres: &MultiPolygon, settings: &FillSettings) ->
         fill: true,
     });
     Some(swaths)
+}
+
+/// `swaths` less those `reached` refuses (their lifts renumbered); `None` if none is left.
+fn reached_only(
+    mut swaths: Swaths,
+    reached: &dyn Fn(&crate::swath::Swath) -> bool,
+) -> Option<Swaths> {
+    let keep: Vec<bool> = swaths.swaths.iter().map(reached).collect();
+    let mut new_index = Vec::with_capacity(keep.len());
+    let mut next = 0;
+    for &k in &keep {
+        new_index.push(next);
+        next += usize::from(k);
+    }
+    let mut k = keep.iter();
+    swaths.swaths.retain(|_| k.next().copied().unwrap_or(false));
+    swaths
+        .lifts
+        .retain(|l| keep.get(l.swath).copied().unwrap_or(false));
+    for l in &mut swaths.lifts {
+        l.swath = new_index.get(l.swath).copied().unwrap_or(l.swath);
+    }
+    (!swaths.swaths.is_empty()).then_some(swaths)
 }
 
 /// The area the implement works along `swaths`: their strips, `width` wide, as one region.
@@ -336,6 +371,40 @@ mod tests {
         assert_eq!(lines.len(), 1);
         assert!(lines[0].iter().any(|p| north(*p)));
         assert!((lines[0][0].x - 27.0).abs() < 0.6);
+    }
+
+    #[test]
+    fn where_no_direction_reaches_every_piece_the_reachable_ones_are_laid() {
+        // A 60 x 100 m field worked west of x = 36: the strip left is 24 m wide, and the route
+        // gets only to its north-eastern corner. Along the strip, two of its four pieces end
+        // there; across it, only the northernmost.
+        let field = polygon![(x: 0., y: 0.), (x: 60., y: 0.), (x: 60., y: 100.), (x: 0., y: 100.)];
+        let worked: Vec<Vec<Coord>> = (0..6)
+            .map(|i| {
+                let x = 3.0 + 6.0 * i as f64;
+                vec![coord! { x: x, y: 0.0 }, coord! { x: x, y: 100.0 }]
+            })
+            .collect();
+        let before = measure(&field, &[], &worked, 6.0);
+        let centres = inset(&MultiPolygon::new(vec![field.clone()]), 3.0);
+        let corner = |p: Coord| p.x > 48.0 && p.y > 90.0;
+        let from_corner = FillSettings {
+            reachable: &corner,
+            ..settings(0.0)
+        };
+        let pieces = fill(&before.uncovered, &centres, &from_corner);
+        let lines = lines_of(&pieces);
+        assert_eq!(lines.len(), 2, "{lines:?}");
+        assert!(lines.iter().all(|l| l.iter().any(|p| corner(*p))));
+        let mut all = worked.clone();
+        all.extend(lines);
+        let after = measure(&field, &[], &all, 6.0);
+        assert!(
+            after.uncovered_area_m2 < before.uncovered_area_m2 - 1000.0,
+            "{} -> {}",
+            before.uncovered_area_m2,
+            after.uncovered_area_m2
+        );
     }
 
     #[test]
