@@ -150,13 +150,13 @@ fn fill_part(part: &Polygon, centres: &MultiPolygon, settings: &FillSettings) ->
         };
         if !swaths.swaths.iter().all(reached) {
             if best.is_none() {
-                if let Some(some) = reached_only(swaths, &reached) {
-                    if partly
-                        .as_ref()
-                        .is_none_or(|p| length(&some) > length(p) + 1e-6)
-                    {
-                        partly = Some(some);
-                    }
+                let mut some = swaths;
+                some.retain(reached);
+                let longer = partly
+                    .as_ref()
+                    .is_none_or(|p| length(&some) > length(p) + 1e-6);
+                if !some.swaths.is_empty() && longer {
+                    partly = Some(some);
                 }
             }
             continue;
@@ -179,29 +179,6 @@ fn fill_part(part: &Polygon, centres: &MultiPolygon, settings: &FillSettings) ->
         fill: true,
     });
     Some(swaths)
-}
-
-/// `swaths` less those `reached` refuses (their lifts renumbered); `None` if none is left.
-fn reached_only(
-    mut swaths: Swaths,
-    reached: &dyn Fn(&crate::swath::Swath) -> bool,
-) -> Option<Swaths> {
-    let keep: Vec<bool> = swaths.swaths.iter().map(reached).collect();
-    let mut new_index = Vec::with_capacity(keep.len());
-    let mut next = 0;
-    for &k in &keep {
-        new_index.push(next);
-        next += usize::from(k);
-    }
-    let mut k = keep.iter();
-    swaths.swaths.retain(|_| k.next().copied().unwrap_or(false));
-    swaths
-        .lifts
-        .retain(|l| keep.get(l.swath).copied().unwrap_or(false));
-    for l in &mut swaths.lifts {
-        l.swath = new_index.get(l.swath).copied().unwrap_or(l.swath);
-    }
-    (!swaths.swaths.is_empty()).then_some(swaths)
 }
 
 /// The area the implement works along `swaths`: their strips, `width` wide, as one region.
@@ -336,6 +313,16 @@ mod tests {
         true
     }
 
+    /// The first `n` 6 m swaths of a field from x = 0, north from y = 0 to `to_y`.
+    fn worked_from_west(n: usize, to_y: f64) -> Vec<Vec<Coord>> {
+        (0..n)
+            .map(|i| {
+                let x = 3.0 + 6.0 * i as f64;
+                vec![coord! { x: x, y: 0.0 }, coord! { x: x, y: to_y }]
+            })
+            .collect()
+    }
+
     fn lines_of(s: &[Swaths]) -> Vec<Vec<Coord>> {
         s.iter()
             .flat_map(|s| s.swaths.iter().map(|x| vec![x.centre.start, x.centre.end]))
@@ -346,10 +333,7 @@ mod tests {
     fn a_part_is_filled_only_where_the_route_can_get_to_a_piece() {
         // A 30 x 100 m field worked by four 6 m swaths: the last strip, x 24 to 30, is left.
         let field = polygon![(x: 0., y: 0.), (x: 30., y: 0.), (x: 30., y: 100.), (x: 0., y: 100.)];
-        let worked: Vec<Vec<Coord>> = [3.0, 9.0, 15.0, 21.0]
-            .iter()
-            .map(|&x| vec![coord! { x: x, y: 0.0 }, coord! { x: x, y: 100.0 }])
-            .collect();
+        let worked = worked_from_west(4, 100.0);
         let left = measure(&field, &[], &worked, 6.0).uncovered;
         let centres = inset(&MultiPolygon::new(vec![field]), 3.0);
         // Nowhere to get to: nothing is laid.
@@ -379,12 +363,7 @@ mod tests {
         // gets only to its north-eastern corner. Along the strip, two of its four pieces end
         // there; across it, only the northernmost.
         let field = polygon![(x: 0., y: 0.), (x: 60., y: 0.), (x: 60., y: 100.), (x: 0., y: 100.)];
-        let worked: Vec<Vec<Coord>> = (0..6)
-            .map(|i| {
-                let x = 3.0 + 6.0 * i as f64;
-                vec![coord! { x: x, y: 0.0 }, coord! { x: x, y: 100.0 }]
-            })
-            .collect();
+        let worked = worked_from_west(6, 100.0);
         let before = measure(&field, &[], &worked, 6.0);
         let centres = inset(&MultiPolygon::new(vec![field.clone()]), 3.0);
         let corner = |p: Coord| p.x > 48.0 && p.y > 90.0;
@@ -396,6 +375,8 @@ mod tests {
         let lines = lines_of(&pieces);
         assert_eq!(lines.len(), 2, "{lines:?}");
         assert!(lines.iter().all(|l| l.iter().any(|p| corner(*p))));
+        let numbered = |s: &Swaths| s.swaths.iter().enumerate().all(|(i, x)| x.index == i);
+        assert!(pieces.iter().all(numbered));
         let mut all = worked.clone();
         all.extend(lines);
         let after = measure(&field, &[], &all, 6.0);
@@ -411,12 +392,7 @@ mod tests {
     fn a_strip_across_the_swath_ends_is_worked_along_its_length() {
         // Swaths north-south end 6 m short of the north edge: the strip left is worked east-west.
         let field = polygon![(x: 0., y: 0.), (x: 60., y: 0.), (x: 60., y: 100.), (x: 0., y: 100.)];
-        let worked: Vec<Vec<Coord>> = (0..10)
-            .map(|i| {
-                let x = 3.0 + 6.0 * i as f64;
-                vec![coord! { x: x, y: 0.0 }, coord! { x: x, y: 94.0 }]
-            })
-            .collect();
+        let worked = worked_from_west(10, 94.0);
         let before = measure(&field, &[], &worked, 6.0);
         assert!(before.coverage_ratio < 0.95);
         let centres = inset(&MultiPolygon::new(vec![field.clone()]), 3.0);
@@ -444,12 +420,7 @@ mod tests {
     #[test]
     fn a_forbidden_direction_is_not_used() {
         let field = polygon![(x: 0., y: 0.), (x: 60., y: 0.), (x: 60., y: 100.), (x: 0., y: 100.)];
-        let worked: Vec<Vec<Coord>> = (0..10)
-            .map(|i| {
-                let x = 3.0 + 6.0 * i as f64;
-                vec![coord! { x: x, y: 0.0 }, coord! { x: x, y: 94.0 }]
-            })
-            .collect();
+        let worked = worked_from_west(10, 94.0);
         let before = measure(&field, &[], &worked, 6.0);
         let centres = inset(&MultiPolygon::new(vec![field]), 3.0);
         let east_west = [BearingRange {

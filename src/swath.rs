@@ -618,6 +618,46 @@ impl Swaths {
             .min(self.swaths.len())
     }
 
+    /// Keeps the swaths `keep` accepts, in order, numbered again from 0: their indices, the
+    /// lifts over obstacles (those of swaths dropped go) and the areas' ranges follow.
+    ///
+    /// ```
+    /// use furrow::swath::generate;
+    /// use geo::{polygon, MultiPolygon};
+    /// let field = polygon![(x: 0., y: 0.), (x: 60., y: 0.), (x: 60., y: 100.), (x: 0., y: 100.)];
+    /// let mut swaths = generate(&MultiPolygon::new(vec![field]), 0.0, 6.0, 6.0)?;
+    /// swaths.retain(|s| s.index % 2 == 1);
+    /// assert_eq!(swaths.swaths.len(), 5);
+    /// assert!(swaths.swaths.iter().enumerate().all(|(i, s)| s.index == i));
+    /// # Ok::<(), furrow::PlanError>(())
+    /// ```
+    pub fn retain(&mut self, mut keep: impl FnMut(&Swath) -> bool) {
+        // new_index[i]: how many swaths before i are kept (one more entry, for range ends).
+        let mut new_index = Vec::with_capacity(self.swaths.len() + 1);
+        let mut kept = Vec::with_capacity(self.swaths.len());
+        let mut next = 0;
+        for s in self.swaths.drain(..) {
+            new_index.push(next);
+            if keep(&s) {
+                kept.push(Swath { index: next, ..s });
+                next += 1;
+            }
+        }
+        new_index.push(next);
+        let is_kept = |i: usize| matches!((new_index.get(i), new_index.get(i + 1)), (Some(a), Some(b)) if b > a);
+        self.lifts.retain(|l| is_kept(l.swath));
+        for l in &mut self.lifts {
+            if let Some(&n) = new_index.get(l.swath) {
+                l.swath = n;
+            }
+        }
+        for a in &mut self.areas {
+            let at = |i: usize| new_index.get(i).copied().unwrap_or(next);
+            a.swaths = at(a.swaths.start)..at(a.swaths.end);
+        }
+        self.swaths = kept;
+    }
+
     /// Appends the swaths of another area (a prohibited region worked in its own direction):
     /// their indices follow on, and their lines are numbered apart from this set's so that no
     /// block joins swaths of the two.
@@ -658,6 +698,41 @@ mod tests {
     use super::*;
     use geo::{polygon, Contains, Point};
     use std::f64::consts::FRAC_PI_2;
+
+    #[test]
+    fn retain_renumbers_lifts_and_areas() {
+        let field = polygon![(x: 0., y: 0.), (x: 60., y: 0.), (x: 60., y: 100.), (x: 0., y: 100.)];
+        let mut swaths = generate(&MultiPolygon::new(vec![field]), 0.0, 6.0, 6.0)
+            .unwrap_or_else(|e| panic!("{e}"));
+        let lift = |swath| Lift {
+            swath,
+            obstacle: 0,
+            along: (10.0, 20.0),
+        };
+        swaths.lifts = vec![lift(1), lift(4), lift(7)];
+        let area = |r: std::ops::Range<usize>, fill| SwathArea {
+            swaths: r,
+            bearing: 0.0,
+            region: None,
+            area: MultiPolygon::new(vec![]),
+            fill,
+        };
+        swaths.areas = vec![area(0..6, false), area(6..10, true)];
+        let across: Vec<f64> = swaths.swaths.iter().map(|s| s.across).collect();
+        // Drop swaths 0, 3 and 7.
+        swaths.retain(|s| ![0, 3, 7].contains(&s.index));
+        assert_eq!(swaths.swaths.len(), 7);
+        let kept: Vec<f64> = swaths.swaths.iter().map(|s| s.across).collect();
+        let expected: Vec<f64> = [1, 2, 4, 5, 6, 8, 9].iter().map(|&i| across[i]).collect();
+        assert_eq!(kept, expected);
+        assert!(swaths.swaths.iter().enumerate().all(|(i, s)| s.index == i));
+        // Old 1 and 4 are now 0 and 2; the lift of the dropped 7 goes.
+        let lifted: Vec<usize> = swaths.lifts.iter().map(|l| l.swath).collect();
+        assert_eq!(lifted, vec![0, 2]);
+        assert_eq!(swaths.areas[0].swaths, 0..4);
+        assert_eq!(swaths.areas[1].swaths, 4..7);
+        assert_eq!(swaths.first_fill_swath(), 4);
+    }
 
     fn north(width: f64) -> SwathSettings {
         SwathSettings {

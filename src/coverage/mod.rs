@@ -127,11 +127,12 @@ pub fn measure(
 /// use geo::{coord, polygon};
 ///
 /// let field = polygon![(x: 0., y: 0.), (x: 12., y: 0.), (x: 12., y: 100.), (x: 0., y: 100.)];
-/// let mut tally = Tally::new(&field, &[], 6.0).expect("a field and a width");
+/// let mut tally = Tally::new(&field, &[], 6.0).ok_or("no field or no width")?;
 /// tally.work(&[vec![coord! { x: 3.0, y: 0.0 }, coord! { x: 3.0, y: 100.0 }]]);
 /// assert!((tally.coverage().coverage_ratio - 0.5).abs() < 0.01);
 /// tally.work(&[vec![coord! { x: 9.0, y: 0.0 }, coord! { x: 9.0, y: 100.0 }]]);
 /// assert!(tally.coverage().coverage_ratio > 0.99);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 #[derive(Debug, Clone)]
 pub struct Tally {
