@@ -202,3 +202,50 @@ fn every_part_left_standing_is_a_feature_and_lies_in_the_field() {
         assert!(part.reachable_m2 <= part.area_m2);
     }
 }
+
+/// A curved strip 40 m wide (half a ring, radii 110 and 150 m), in local metres.
+fn curved_strip() -> String {
+    let n = 60;
+    let arc = |r: f64, from: f64, to: f64| {
+        (0..=n).map(move |i| {
+            let t = from + (to - from) * i as f64 / n as f64;
+            format!("[{:.6},{:.6}]", r * t.cos(), r * t.sin())
+        })
+    };
+    let pi = std::f64::consts::PI;
+    let mut ring: Vec<String> = arc(150.0, 0.0, pi).chain(arc(110.0, pi, 0.0)).collect();
+    ring.push(ring[0].clone());
+    format!(
+        r#"{{"type":"Polygon","coordinates":[[{}]]}}"#,
+        ring.join(",")
+    )
+}
+
+#[test]
+fn a_strip_too_narrow_for_an_inner_field_is_worked_by_its_pass_round_it() {
+    // A 24 m sprayer with one pass: the pass 12 m in leaves no inner field (24 m in). Worked
+    // across by straight swaths without headland, the curved strip was 76 % covered and the
+    // boom reached past its sides; its pass round the strip works both sides of it.
+    let options = furrow::PlanOptions {
+        width: 24.0,
+        headland_passes: 1.into(),
+        turn_radius: 5.0,
+        coordinates: furrow::field::Coordinates::Metric,
+        ..furrow::PlanOptions::default()
+    };
+    let plan = plan_geojson(&curved_strip(), &options).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(plan.summary.headland_pass_count, 1);
+    assert_eq!(plan.summary.swath_count, plan.summary.fill_swath_count);
+    let counted = independent_coverage(&plan, 0.5);
+    assert!(counted > 0.96, "{counted:.4} of the strip worked");
+    let c = &plan.summary.coverage;
+    assert!(
+        (c.coverage_ratio - counted).abs() <= 0.005,
+        "{c:?} against {counted:.4}"
+    );
+    assert!(
+        c.outside_area_m2 < 1.0,
+        "{} m² worked outside",
+        c.outside_area_m2
+    );
+}

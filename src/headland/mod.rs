@@ -102,7 +102,8 @@ pub struct Headlands {
     /// The passes, nearest to the boundary first; a pass that splits at a neck gives several
     /// entries with the same index.
     pub passes: Vec<HeadlandPass>,
-    /// The inner field: where the swaths go. Possibly several parts.
+    /// The inner field: where the swaths go. Possibly several parts; empty where the passes
+    /// take up the whole field (a strip a few widths wide worked by its passes alone).
     pub inner: MultiPolygon,
     /// The field less the obstacles that have headlands: what the passes are measured from.
     pub region: MultiPolygon,
@@ -164,7 +165,8 @@ pub fn constant_width(field: &Field, width: f64, passes: u32) -> Result<Headland
 }
 
 /// Builds the headland passes and the inner field of a boundary with holes (the obstacles that
-/// get headlands).
+/// get headlands). Passes that leave no inner field are still laid (the field is worked by
+/// them alone); a field no pass fits into is the error `headland_consumes_field`.
 ///
 /// ```
 /// use furrow::headland::{build, HeadlandSettings};
@@ -271,11 +273,12 @@ pub fn build(
         let blocking: Vec<Constraint> = cs.into_iter().filter(|c| c.high).collect();
         keep_clear(&region, &blocking)
     };
-    if inner.0.is_empty() {
+    if inner.0.is_empty() && passes.is_empty() {
         return Err(PlanError::new(
             ErrorCode::HeadlandConsumesField,
             format!(
-                "{most} headland passes of {w} m take up the whole field; use fewer passes or a narrower width"
+                "no headland pass of {w} m fits into the field with turns of {} m radius; use a narrower width or a smaller turning radius",
+                settings.turn_radius
             ),
         ));
     }
@@ -578,9 +581,17 @@ mod tests {
     }
 
     #[test]
-    fn too_many_passes_consume_the_field() {
+    fn passes_that_leave_no_inner_field_are_laid_and_a_field_no_pass_fits_is_refused() {
+        // 30 x 20 m at 6 m: passes at 3 and 9 m in, the inner field 12 m in is empty.
         let f = field(rectangle(30.0, 20.0), vec![]);
-        let e = constant_width(&f, 6.0, 2).unwrap_err();
+        let h = constant_width(&f, 6.0, 2).unwrap();
+        assert!(h.inner.0.is_empty());
+        assert_eq!(h.passes.len(), 2);
+        assert!((h.area_m2 - 600.0).abs() < 1e-6);
+        // A third pass 15 m in does not fit: two are laid.
+        assert_eq!(constant_width(&f, 6.0, 3).unwrap().passes.len(), 2);
+        // A 5 m strip at 6 m: not even the first pass, 3 m in, fits.
+        let e = constant_width(&field(rectangle(100.0, 5.0), vec![]), 6.0, 1).unwrap_err();
         assert_eq!(e.code, ErrorCode::HeadlandConsumesField);
     }
 
