@@ -3,7 +3,9 @@
 planner's own figure: from the CLI's GeoJSON output with shapely, the footprint of every working
 feature (a strip of the width along it, flat ends, lifted stretches left out) against the parcel,
 in a transverse Mercator projection about the parcel (pyproj). Four machines, as in the table of
-docs/performance.md. Needs `pip install shapely pyproj`.
+docs/performance.md. The last column counts plans with a connection that drives through at
+least 1 m of crop the plan works later (not on the headland, not on a strip already worked: see
+crop_crossed). Needs `pip install shapely pyproj`.
 
 usage: python3 scripts/coverage-table.py BINARY [--parcels DIR] [--json OUT]
   BINARY   the CLI, e.g. target/release/examples/plan (cargo build --release --example plan)
@@ -56,9 +58,14 @@ def evaluate(path, args, w):
         return res
     plan = json.loads(p.stdout)
     feet = []; outside = 0.0; turns_out = 0
+    worked_at = []  # (sequence, footprint) of every working feature, for the crop crossed
+    headland_feet = []
+    connections = []
     for f in plan['features']:
         k = f['properties']['kind']
         if f['geometry']['type'] != 'LineString': continue
+        if k == 'connection':
+            connections.append((f['properties'].get('sequence', 0), tf(shape(f['geometry']))))
         if not f['properties'].get('working', k in ('swath', 'headland', 'fill')): 
             continue
         line = tf(shape(f['geometry']))
@@ -71,13 +78,37 @@ def evaluate(path, args, w):
                 pos = b
             if pos < line.length: pieces.append(substring(line, pos, line.length))
         for pc in pieces:
-            if pc.length > 0: feet.append(pc.buffer(w / 2, cap_style=2, join_style=1))
+            if pc.length > 0:
+                foot = pc.buffer(w / 2, cap_style=2, join_style=1)
+                feet.append(foot)
+                worked_at.append((f['properties'].get('sequence', 0), foot))
+                if k == 'headland': headland_feet.append(foot)
     union = unary_union(feet) if feet else Polygon()
     covered = union.intersection(field).area
     total = sum(f.intersection(field).area for f in feet)
     res.update(covered=covered, overlap=max(0.0, total - covered), outside=union.difference(field.buffer(0.05)).area,
-               summary_cov=plan['summary'].get('coverage'), turns_outside=plan['summary'].get('turns_outside_field', 0))
+               summary_cov=plan['summary'].get('coverage'), turns_outside=plan['summary'].get('turns_outside_field', 0),
+               through_crop=crop_crossed(field, headland_feet, worked_at, connections))
     return res
+
+def crop_crossed(field, headland_feet, worked_at, connections):
+    """The longest stretch (metres) of a connection through crop still standing when it is driven
+    and worked later: the field less the headland (driven on by design), taken in a metre from
+    its edges (a connection along a worked strip's edge crosses no crop), less every strip worked
+    earlier in the plan's sequence, within a strip worked later (crop the plan never works, such
+    as a corner left standing, is not counted)."""
+    if not connections: return 0.0
+    crop = field.difference(unary_union(headland_feet)) if headland_feet else field
+    crop = crop.buffer(-1.0)
+    worst = 0.0
+    for seq, line in connections:
+        inside = line.intersection(crop)
+        if inside.is_empty: continue
+        earlier = [foot for s, foot in worked_at if s < seq and foot.intersects(inside)]
+        left = inside.difference(unary_union(earlier)) if earlier else inside
+        later = [foot for s, foot in worked_at if s > seq and foot.intersects(left)]
+        if later: worst = max(worst, left.intersection(unary_union(later)).length)
+    return worst
 
 def run_machine(m):
     name, args, w = m
@@ -102,8 +133,9 @@ for m in MACHINES:
     ov = sum(r.get('overlap', 0) for r in ok) / sum(r['area'] for r in ok)
     outside = sum(1 for r in ok if r['outside'] > 1.0)
     tout = sum(1 for r in ok if r['turns_outside'] > 0)
-    table.append(f"| {name} | {len(refused)} ({len(refused_reach)}) | {100*cov:.1f} % | {100*reach:.2f} % | {100*cov/reach:.1f} % | {100*ge97:.0f} % | {100*lt90:.0f} % | {100*ov:.1f} % | {outside} | {tout} of {len(ok)} |")
-print('| machine | refused (of them reachable >= 50 %) | coverage, area-weighted | reachable (limit) | coverage of reachable | parcels >= 97 % of their reachable | parcels < 90 % covered | overlap | plans working > 1 m² outside | plans with turns outside |')
-print('|---|---|---|---|---|---|---|---|---|---|')
+    crossing = sum(1 for r in ok if r['through_crop'] >= 1.0)
+    table.append(f"| {name} | {len(refused)} ({len(refused_reach)}) | {100*cov:.1f} % | {100*reach:.2f} % | {100*cov/reach:.1f} % | {100*ge97:.0f} % | {100*lt90:.0f} % | {100*ov:.1f} % | {outside} | {tout} of {len(ok)} | {crossing} |")
+print('| machine | refused (of them reachable >= 50 %) | coverage, area-weighted | reachable (limit) | coverage of reachable | parcels >= 97 % of their reachable | parcels < 90 % covered | overlap | plans working > 1 m² outside | plans with turns outside | plans with a connection through >= 1 m of crop worked later |')
+print('|---|---|---|---|---|---|---|---|---|---|---|')
 print('\n'.join(table))
 if out_json: json.dump(allres, open(out_json, 'w'))
