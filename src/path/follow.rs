@@ -184,6 +184,137 @@ pub fn follow(points: &[Coord], v: &Vehicle) -> Vec<Segment> {
     out
 }
 
+/// The path all the way round a closed ring (its first point repeated last) at the vehicle's
+/// limits, from its first point. [`follow`] ends a line where its last corners have no room to
+/// round, up to a few turning radii short; round a ring the machine goes on onto the ring's
+/// beginning, so the ring is followed with a stretch of its beginning again and the path cut
+/// where it is back on the first edge, level with the start or past it (past the start corner's
+/// rounding). A line that is not closed, or a ring whose path never comes back onto its first
+/// edge (a manoeuvre at the start corner settles further on), is [`follow`]ed as it is.
+///
+/// ```
+/// use furrow::path::curve;
+/// use furrow::path::follow::{follow, follow_round};
+/// use furrow::path::turn::Vehicle;
+/// use geo::coord;
+///
+/// let v = Vehicle { turn_radius: 8.0, ..Vehicle::default() };
+/// // A 60 x 40 m rectangle whose south-west corner is a quarter circle of 3 m (drawn as
+/// // chords, tighter than the machine turns), started where that corner ends.
+/// let mut ring = vec![coord! { x: 3., y: 0. }, coord! { x: 60., y: 0. }, coord! { x: 60., y: 40. },
+///     coord! { x: 0., y: 40. }];
+/// for i in 0..=8 {
+///     let t = std::f64::consts::PI * (1.0 + i as f64 / 16.0);
+///     ring.push(coord! { x: 3. + 3. * t.cos(), y: 3. + 3. * t.sin() });
+/// }
+/// // Followed as a line, the path stops where the chords begin, 3 m up the west side.
+/// let end = curve::end(&follow(&ring, &v)).ok_or("no path")?;
+/// assert!(end.x.abs() < 1e-6 && (end.y - 3.0).abs() < 1e-6);
+/// // Round the ring, it rounds that corner at 8 m and stops back on the south side.
+/// let end = curve::end(&follow_round(&ring, &v)).ok_or("no path")?;
+/// assert!(end.y.abs() < 1e-6 && end.x > 3.0 && end.x < 9.0, "{end:?}");
+/// assert!(end.heading.abs() < 1e-6);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn follow_round(ring: &[Coord], v: &Vehicle) -> Vec<Segment> {
+    let (Some(&first), Some(&last)) = (ring.first(), ring.last()) else {
+        return Vec::new();
+    };
+    let closed =
+        ring.len() >= 4 && (first.x - last.x).planar_hypot(first.y - last.y) <= SAME_POINT_M;
+    let Some(second) = ring
+        .iter()
+        .copied()
+        .find(|p| (p.x - first.x).planar_hypot(p.y - first.y) > SAME_POINT_M)
+    else {
+        return Vec::new();
+    };
+    if !closed {
+        return follow(ring, v);
+    }
+    let edge = Edge::new(first, second);
+    let ring_length: f64 = ring
+        .windows(2)
+        .map(|w| (w[1].x - w[0].x).planar_hypot(w[1].y - w[0].y))
+        .sum();
+    // The ring and its beginning again, as far as a rounding or a manoeuvre may reach.
+    let extra = (MAX_SKIPPED_RADII + 3.0) * v.turn_radius + edge.length;
+    let mut again = 0.0;
+    let mut extended: Vec<Coord> = ring.to_vec();
+    for w in ring.windows(2) {
+        if again >= extra.min(ring_length) {
+            break;
+        }
+        extended.push(w[1]);
+        again += (w[1].x - w[0].x).planar_hypot(w[1].y - w[0].y);
+    }
+    let path = follow(&extended, v);
+    match back_on_first_edge(&path, &edge, ring_length / 2.0, v.turn_radius) {
+        Some(cut) => cut_at(path, cut),
+        None => follow(ring, v),
+    }
+}
+
+/// Distance along `path` (past `from`) where it is first on the line of `edge` (within a
+/// millimetre), heading along it, level with the edge's start or past it.
+fn back_on_first_edge(path: &[Segment], edge: &Edge, from: f64, radius: f64) -> Option<f64> {
+    let step = (radius / 20.0).clamp(0.01, 0.5);
+    let on = |p: &Pose| {
+        let d = Coord { x: p.x, y: p.y } - edge.from;
+        let along = d.x * edge.dir.x + d.y * edge.dir.y;
+        let off = (d.x * edge.dir.y - d.y * edge.dir.x).abs();
+        along >= -1e-6 && off <= 1e-3 && wrap(p.heading - edge.heading).abs() < 1e-3
+    };
+    let mut done = 0.0;
+    for seg in path {
+        if done + seg.length >= from {
+            let poses = seg.poses();
+            let mut s = (from - done).max(0.0);
+            let mut before = s;
+            while s <= seg.length {
+                if on(&poses.at(s)) {
+                    // Where, since the last sample that was not, it comes onto the edge.
+                    let (mut lo, mut hi) = (before, s);
+                    for _ in 0..40 {
+                        let mid = (lo + hi) / 2.0;
+                        if on(&poses.at(mid)) {
+                            hi = mid;
+                        } else {
+                            lo = mid;
+                        }
+                    }
+                    return Some(done + hi);
+                }
+                before = s;
+                s += step;
+            }
+            if on(&seg.end()) {
+                return Some(done + seg.length);
+            }
+        }
+        done += seg.length;
+    }
+    None
+}
+
+/// `path` cut `at` metres from its start.
+fn cut_at(path: Vec<Segment>, at: f64) -> Vec<Segment> {
+    let mut out = Vec::with_capacity(path.len());
+    let mut done = 0.0;
+    for mut seg in path {
+        if done + seg.length >= at {
+            seg.length = (at - done).max(0.0);
+            if seg.length > 1e-9 {
+                out.push(seg);
+            }
+            break;
+        }
+        done += seg.length;
+        out.push(seg);
+    }
+    out
+}
+
 /// Drives `length` metres straight on from `position` (nothing if under a micrometre).
 fn push_line(out: &mut Vec<Segment>, position: &mut Pose, length: f64) {
     if length > 1e-6 {

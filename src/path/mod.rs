@@ -32,7 +32,7 @@ use crate::headland::HeadlandPass;
 use crate::route::{nearest_on_ring, Route, RouteStep};
 use crate::swath::Swaths;
 use curve::{Gear, Pose, Segment};
-use follow::follow;
+use follow::{follow, follow_round};
 use geo::{Coord, Euclidean, Length, LineString};
 use turn::{Area, TurnForm, Vehicle};
 
@@ -246,20 +246,22 @@ pub fn build_path(
                 let Some(p) = passes.get(pass) else {
                     continue;
                 };
-                let line = if p.closed {
+                let pieces = if p.closed {
                     // Where the connection into it ends, else where the machine is.
                     let at = into
                         .as_ref()
                         .and_then(|c| c.0.last().copied())
                         .or(last_point);
                     let (_, entry) = nearest_on_ring(&p.line, at);
-                    ring_starting_at(&p.line, entry)
+                    // All the way round, back to where it was entered.
+                    follow_round(&ring_starting_at(&p.line, entry).0, vehicle)
                 } else if reversed {
-                    LineString::new(p.line.0.iter().rev().copied().collect())
+                    let line: Vec<Coord> = p.line.0.iter().rev().copied().collect();
+                    follow(&line, vehicle)
                 } else {
-                    p.line.clone()
+                    follow(&p.line.0, vehicle)
                 };
-                (follow(&line.0, vehicle), SegmentKind::HeadlandPass, None)
+                (pieces, SegmentKind::HeadlandPass, None)
             }
         };
         if pieces.is_empty() {
