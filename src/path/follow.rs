@@ -258,7 +258,8 @@ pub fn follow_round(ring: &[Coord], v: &Vehicle) -> Vec<Segment> {
 /// Distance along `path` (past `from`) where it is first on the line of `edge` (within a
 /// millimetre), heading along it, level with the edge's start or past it.
 fn back_on_first_edge(path: &[Segment], edge: &Edge, from: f64, radius: f64) -> Option<f64> {
-    let step = (radius / 20.0).clamp(0.01, 0.5);
+    // At most about 100,000 samples, however long the ring and small the radius.
+    let step = (radius / 20.0).clamp(0.01, 0.5).max(from / 50_000.0);
     let on = |p: &Pose| {
         let d = Coord { x: p.x, y: p.y } - edge.from;
         let along = d.x * edge.dir.x + d.y * edge.dir.y;
