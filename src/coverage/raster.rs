@@ -146,17 +146,9 @@ impl Grid {
     /// `a` to `b` measured square to it, and between its ends: the strip an implement of twice
     /// that width sweeps along it.
     pub fn fill_strip(&self, a: Coord, b: Coord, half_width: f64, visit: &mut dyn FnMut(usize)) {
-        let d = b - a;
-        let length = d.x.planar_hypot(d.y);
-        if length.is_nan() || length <= 0.0 || half_width.is_nan() || half_width <= 0.0 {
-            return;
+        if let Some(n) = side_offset(a, b, half_width) {
+            self.fill_convex(&[a + n, b + n, b - n, a - n], visit);
         }
-        let n = Coord {
-            x: -d.y / length * half_width,
-            y: d.x / length * half_width,
-        };
-        let corners = [a + n, b + n, b - n, a - n];
-        self.fill_convex(&corners, visit);
     }
 
     /// Calls `visit` with each cell in the wedges the strips of half-width `half_width` along
@@ -186,18 +178,8 @@ impl Grid {
         half_width: f64,
         visit: &mut dyn FnMut(usize),
     ) {
-        let normal = |p: Coord, q: Coord| {
-            let d = q - p;
-            let length = d.x.planar_hypot(d.y);
-            (length > 0.0 && length.is_finite()).then(|| Coord {
-                x: -d.y / length * half_width,
-                y: d.x / length * half_width,
-            })
-        };
-        if half_width.is_nan() || half_width <= 0.0 {
-            return;
-        }
-        let (Some(n1), Some(n2)) = (normal(a, b), normal(b, c)) else {
+        let (Some(n1), Some(n2)) = (side_offset(a, b, half_width), side_offset(b, c, half_width))
+        else {
             return;
         };
         self.fill_convex(&[b, b + n1, b + n2], visit);
@@ -273,6 +255,17 @@ impl Grid {
 /// The edges of a closed ring.
 fn ring_edges(ring: &LineString) -> impl Iterator<Item = (Coord, Coord)> + '_ {
     ring.0.windows(2).map(|w| (w[0], w[1]))
+}
+
+/// The offset `half_width` to the left of the segment from `a` to `b`; `None` for a segment
+/// of no length or a width that is not a positive number.
+fn side_offset(a: Coord, b: Coord, half_width: f64) -> Option<Coord> {
+    let d = b - a;
+    let length = d.x.planar_hypot(d.y);
+    (length > 0.0 && length.is_finite() && half_width > 0.0).then(|| Coord {
+        x: -d.y / length * half_width,
+        y: d.x / length * half_width,
+    })
 }
 
 #[cfg(test)]

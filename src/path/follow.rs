@@ -261,8 +261,9 @@ fn back_on_first_edge(path: &[Segment], edge: &Edge, from: f64, radius: f64) -> 
     // At most about 100,000 samples, however long the ring and small the radius.
     let step = (radius / 20.0).clamp(0.01, 0.5).max(from / 50_000.0);
     let on = |p: &Pose| {
-        let d = Coord { x: p.x, y: p.y } - edge.from;
-        let along = d.x * edge.dir.x + d.y * edge.dir.y;
+        let at = Coord { x: p.x, y: p.y };
+        let along = edge.along(at);
+        let d = at - edge.from;
         let off = (d.x * edge.dir.y - d.y * edge.dir.x).abs();
         along >= -1e-6 && off <= 1e-3 && wrap(p.heading - edge.heading).abs() < 1e-3
     };
