@@ -9,7 +9,7 @@
 //! | `obstacle` | Polygon | `index`, `feature` (index of the input feature), `name` (if it had one), `class` (`A`-`D`), `group` (for class C: the `obstacle_group` it was merged into) |
 //! | `obstacle_group` | Polygon | `index`, `class` (`C`), `members` (indices of the obstacles merged) |
 //! | `swath` | LineString | `sequence`, `index`, `block`, `line`, `length_m`, `bearing_deg` (driving direction), `lifted` (if any: `[from, to]` metres from the swath's first point where the implement is lifted over a class A obstacle), `overlap_m` (on a line working a leftover strip: its overlap with the neighbouring strip), `region` (in a prohibited region worked in its own direction), `fill` (`true` in a fill block) |
-//! | `headland` | LineString | `sequence`, `pass` (1 = nearest the boundary or obstacle), `around` (`field` or `obstacle`), `closed`, `length_m` |
+//! | `headland` | LineString | `sequence`, `pass` (1 = nearest the boundary or obstacle), `around` (`field`, `obstacle`, `block` or `fill`), `closed`, `length_m` |
 //! | `turn` | LineString | `sequence`, `block`, `length_m`, `form`, `word`, `inside` |
 //! | `connection` | LineString | `sequence`, `length_m` |
 //! | `uncovered` | Polygon | `index`, `area_m2`, `reachable_m2` (what a strip of the implement's width could reach of it): crop left standing, parts larger than a quarter of a working width squared, largest first |
@@ -121,7 +121,7 @@ pub struct Properties {
     /// The obstacles merged into an obstacle group.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub members: Option<Vec<usize>>,
-    /// What a headland pass runs around: `field` or `obstacle`.
+    /// What a headland pass runs around: `field`, `obstacle`, `block` or `fill`.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub around: Option<&'static str>,
     /// Whether a headland pass is a closed path.

@@ -152,6 +152,15 @@ fn check_headlands_with(plan: &Plan, name: &str, shape: bool) {
     }
 
     let boundary_rings = region_rings(plan);
+    let field_rings: Vec<LineString> = std::iter::once(plan.field.boundary.exterior().clone())
+        .chain(plan.field.boundary.interiors().iter().cloned())
+        .chain(
+            plan.field
+                .obstacles
+                .iter()
+                .map(|o| o.polygon.exterior().clone()),
+        )
+        .collect();
     for pass in &h.passes {
         let k = pass.index;
         let expected = (k as f64 - 0.5) * w;
@@ -167,6 +176,18 @@ fn check_headlands_with(plan: &Plan, name: &str, shape: bool) {
                 assert!(
                     db > w - TOL,
                     "{name}: block pass {db:.4} m from the boundary"
+                );
+            }
+            continue;
+        }
+        if pass.around == PassAround::Fill {
+            // Along the outline of crop left standing: half a width or more inside the field
+            // and off every obstacle, whatever its shape.
+            for &p in pts {
+                let db = dist_to_lines(p, &field_rings);
+                assert!(
+                    db > w / 2.0 - TOL,
+                    "{name}: fill pass {db:.4} m from the boundary or an obstacle (width {w})"
                 );
             }
             continue;
@@ -315,11 +336,13 @@ fn check_headlands_with(plan: &Plan, name: &str, shape: bool) {
         }
     }
 
-    // Passes never cross each other or an obstacle.
+    // Passes never cross each other or an obstacle (fill passes run along what the others
+    // leave, over worked crop at their ends).
     let boxes: Vec<_> = h.passes.iter().map(|p| p.line.bounding_rect()).collect();
+    let fill = |i: usize| h.passes[i].around == PassAround::Fill;
     for i in 0..h.passes.len() {
         for j in i + 1..h.passes.len() {
-            if rects_meet(boxes[i], boxes[j]) {
+            if !fill(i) && !fill(j) && rects_meet(boxes[i], boxes[j]) {
                 assert!(
                     !h.passes[i].line.intersects(&h.passes[j].line),
                     "{name}: passes {i} and {j} cross"
@@ -357,7 +380,7 @@ fn constant_headlands_keep_their_invariants_on_every_field() {
             p.headlands
                 .passes
                 .iter()
-                .all(|p| p.closed || p.around == PassAround::Block),
+                .all(|p| p.closed || matches!(p.around, PassAround::Block | PassAround::Fill)),
             "{}",
             field.name
         );

@@ -233,13 +233,18 @@ fn check_outer_passes(
     // a centimetre of their true place (headland::offset).
     let slack = 1e-2;
     for pass in plan.headlands.passes.iter().filter(|p| p.index == 1) {
-        let edge = match pass.around {
-            PassAround::Field => field.exterior(),
-            PassAround::Obstacle => pond.exterior(),
+        let edges = match pass.around {
+            PassAround::Field => vec![field.exterior()],
+            PassAround::Obstacle => vec![pond.exterior()],
+            // Passes along what is left keep clear of both.
+            PassAround::Fill => vec![field.exterior(), pond.exterior()],
             PassAround::Block => continue,
         };
         for &c in pass.line.0.iter() {
-            let d = Euclidean.distance(&Point(c), edge);
+            let d = edges
+                .iter()
+                .map(|e| Euclidean.distance(&Point(c), *e))
+                .fold(f64::INFINITY, f64::min);
             prop_assert!(
                 d >= width / 2.0 - slack,
                 "a {:?} pass at {c:?} is {d} m from its edge, less than half the width {width}",

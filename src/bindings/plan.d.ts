@@ -263,9 +263,11 @@ export interface PlanFeatureProperties {
   members?: number[];
   /**
    * What a headland pass runs around: the field boundary, an obstacle (or obstacle group), or
-   * (`"block"`) the border between two blocks where both blocks' swaths end.
+   * (`"block"`) the border between two blocks where both blocks' swaths end; or (`"fill"`)
+   * the outline of crop the other passes and the swaths leave, such as an arm too narrow to
+   * turn in.
    */
-  around?: "field" | "obstacle" | "block";
+  around?: "field" | "obstacle" | "block" | "fill";
   /**
    * Whether a headland pass is a closed loop (its last point repeats its first). In `"needed"`
    * mode the passes along the field edges are open lines.

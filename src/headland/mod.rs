@@ -59,6 +59,9 @@ pub enum PassAround {
     /// The border between two blocks of different directions whose swaths both end there: the
     /// pass runs along it, inside one of them.
     Block,
+    /// Crop the passes and swaths leave standing (a narrow arm, a neck): the pass runs along
+    /// the outline of what is left, half a width in ([`crate::fill::along`]).
+    Fill,
 }
 
 impl PassAround {
@@ -68,6 +71,7 @@ impl PassAround {
             PassAround::Field => "field",
             PassAround::Obstacle => "obstacle",
             PassAround::Block => "block",
+            PassAround::Fill => "fill",
         }
     }
 }

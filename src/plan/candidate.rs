@@ -10,11 +10,12 @@ use crate::decompose::{cluster_swaths, Blocks, Decomposition};
 use crate::direction::{search_area, AreaSearch, DirectionMode};
 use crate::error::{ErrorCode, PlanError, Warning, WarningCode};
 use crate::field::{Field, ProhibitedRegion};
+use crate::fill::along::passes_along;
 use crate::fill::{fill, FillSettings};
 use crate::geometry::BooleanOps;
 use crate::geometry::{forbids_every_direction, SweepFrame};
 use crate::headland::offset::inset;
-use crate::headland::Headlands;
+use crate::headland::{HeadlandPass, Headlands, PassAround};
 use crate::metrics::{summarise, DirectionFigures, DirectionReport, StageTimes, Summary};
 use crate::objective::{measure_all, Machine, ObjectiveValues};
 use crate::obstacles::ObstacleClass;
@@ -128,22 +129,47 @@ pub(super) fn fill_leftovers(
         min_length: options.min_swath_length_m(),
         reachable: &|p| graph.reaches(p),
     };
+    let centres = strip_centres(prep.field, width);
     let pieces = if before.uncovered.is_empty() {
         Vec::new()
     } else {
-        fill(
-            &before.uncovered,
-            &strip_centres(prep.field, width),
-            &settings,
-        )
+        fill(&before.uncovered, &centres, &settings)
+    };
+    let fill_lines: Vec<Vec<geo::Coord>> = pieces
+        .iter()
+        .flat_map(|p| p.swaths.iter().map(|s| vec![s.centre.start, s.centre.end]))
+        .collect();
+    tally.work(&fill_lines);
+    // What the straight pieces leave of narrow arms and bent strips: passes along its outline.
+    let along = if pieces.is_empty() && before.uncovered.is_empty() {
+        Vec::new()
+    } else {
+        let left = if pieces.is_empty() {
+            before.uncovered.clone()
+        } else {
+            tally.coverage().uncovered
+        };
+        // Reached along the straight pieces' tracks too: they are worked before the passes
+        // when these come last.
+        let mut tracks = tracks.clone();
+        tracks.extend(pieces.iter().flat_map(|p| {
+            p.swaths
+                .iter()
+                .map(|s| geo::LineString::new(vec![s.centre.start, s.centre.end]))
+        }));
+        let ways = Ways {
+            passes: &worked.headlands.passes,
+            tracks: &tracks,
+        };
+        passes_along_in_rounds(&mut tally, left, &centres, &settings, &ways)
     };
     times.lap(&mut clock, |t| &mut t.metrics);
-    if pieces.is_empty() {
+    if pieces.is_empty() && along.is_empty() {
         return Ok((worked, before));
     }
     let Worked {
         method,
-        headlands,
+        mut headlands,
         mut swaths,
         summary,
         mut warnings,
@@ -152,15 +178,11 @@ pub(super) fn fill_leftovers(
         machine,
         ..
     } = worked;
-    let first = swaths.swaths.len();
     for p in pieces {
         swaths.append(p);
     }
-    let fill_lines: Vec<Vec<geo::Coord>> = swaths.swaths[first..]
-        .iter()
-        .map(|s| vec![s.centre.start, s.centre.end])
-        .collect();
-    tally.work(&fill_lines);
+    let along_passes = !along.is_empty();
+    headlands.passes.extend(along);
     let blocks = cluster_swaths(&swaths);
     let laid = Laid {
         headlands,
@@ -179,7 +201,14 @@ pub(super) fn fill_leftovers(
     let (route, path, summary) = route_and_path(prep, &laid, &blocks, None, &mut warnings, times)?;
     let path = path.unwrap_or_default();
     let mut clock = Instant::now();
-    let after = tally.coverage();
+    // Passes are driven with their corners rounded: measured along the path.
+    let after = match Tally::new(&prep.field.boundary, &obstacles, width) {
+        Some(mut t) if along_passes => {
+            t.work(&worked_lines(&laid.swaths, &route, &path));
+            t.coverage()
+        }
+        _ => tally.coverage(),
+    };
     times.lap(&mut clock, |t| &mut t.metrics);
     let filled = Worked {
         method,
@@ -196,6 +225,58 @@ pub(super) fn fill_leftovers(
         machine,
     };
     Ok((filled, after))
+}
+
+/// Rounds of fill passes along the outline of what is left ([`passes_along`]): each round
+/// works what the rounds before leave of `left`, reached along them as well as along `ways`.
+/// `tally` is worked by the passes laid.
+fn passes_along_in_rounds(
+    tally: &mut Tally,
+    mut left: Vec<crate::coverage::Uncovered>,
+    centres: &geo::MultiPolygon,
+    settings: &FillSettings,
+    ways: &Ways,
+) -> Vec<HeadlandPass> {
+    let mut laid: Vec<HeadlandPass> = Vec::new();
+    for round in 0..FILL_PASS_ROUNDS {
+        if left.is_empty() {
+            break;
+        }
+        let mut passes = ways.passes.to_vec();
+        passes.extend(laid.iter().cloned());
+        let graph = HeadlandGraph::with_tracks(&passes, ways.tracks, settings.width);
+        let reaches = |p: geo::Coord| graph.reaches(p);
+        let round_settings = FillSettings {
+            reachable: &reaches,
+            ..*settings
+        };
+        let new = passes_along(&left, centres, &round_settings);
+        if new.is_empty() {
+            break;
+        }
+        let lines: Vec<Vec<geo::Coord>> = new.iter().map(|p| p.line.0.clone()).collect();
+        tally.work(&lines);
+        laid.extend(new.into_iter().map(|p| HeadlandPass {
+            index: 1,
+            line: p.line,
+            closed: p.closed,
+            around: PassAround::Fill,
+        }));
+        if round + 1 < FILL_PASS_ROUNDS {
+            left = tally.coverage().uncovered;
+        }
+    }
+    laid
+}
+
+/// Rounds of fill passes at most: a strip more than four widths across, left by passes round
+/// a part, gets passes round what it leaves in turn.
+const FILL_PASS_ROUNDS: usize = 3;
+
+/// The lines the machine drives along without crossing crop once the field's swaths are worked.
+struct Ways<'a> {
+    passes: &'a [HeadlandPass],
+    tracks: &'a [geo::LineString],
 }
 
 /// Routes, paths and measures the swaths laid, taking the route and path of a candidate worked

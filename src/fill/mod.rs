@@ -15,6 +15,8 @@
 //! them along the headland and the worked swaths' tracks, see [`crate::route`]); the overlap
 //! with the work around them is the price, and is reported.
 
+pub mod along;
+
 use crate::coverage::Uncovered;
 use crate::field::ProhibitedRegion;
 use crate::geometry::{bearing_of, swath_direction, BearingRange, BooleanOps, SweepFrame};
@@ -56,7 +58,7 @@ impl std::fmt::Debug for FillSettings<'_> {
 
 /// The least area (in working widths squared) a strip must be able to reach of a part for it to
 /// be filled; and a part must be half a width across somewhere.
-const MIN_PART_WIDTHS: f64 = 0.5;
+pub(crate) const MIN_PART_WIDTHS: f64 = 0.5;
 
 /// The swaths that work the parts of `uncovered`, one set per part that gets any (each at its
 /// own direction). `centres` is where a strip's centre line may run: the field less its
@@ -109,35 +111,7 @@ pub fn fill(
 /// The swaths of one part, at the direction that works it with the fewest pieces.
 fn fill_part(part: &Polygon, centres: &MultiPolygon, settings: &FillSettings) -> Option<Swaths> {
     let w = settings.width;
-    let part = MultiPolygon::new(vec![part.clone()]);
-    // The part where it is at least half a width across, and where a centre line's strip reaches
-    // into that and stays in the field.
-    let core = inset(&part, w / 4.0);
-    if core.unsigned_area() <= 0.0 {
-        return None;
-    }
-    let near = outset(&core, w / 2.0 - REACH_SLACK_M);
-    let box_of = near.bounding_rect()?;
-    // Only the holes near the part matter (a field of 2,000 ponds is one polygon with 2,000
-    // holes).
-    let nearby: Vec<Polygon> = centres
-        .0
-        .iter()
-        .filter(|p| p.bounding_rect().is_some_and(|b| b.intersects(&box_of)))
-        .map(|p| {
-            let holes = p
-                .interiors()
-                .iter()
-                .filter(|h| h.bounding_rect().is_some_and(|b| b.intersects(&box_of)))
-                .cloned()
-                .collect();
-            Polygon::new(p.exterior().clone(), holes)
-        })
-        .collect();
-    let lanes = MultiPolygon::new(nearby).intersection(&near);
-    if lanes.unsigned_area() <= 0.0 {
-        return None;
-    }
+    let Lanes { core, near, lanes } = lanes(part, centres, w)?;
     let reached = |s: &crate::swath::Swath| {
         (settings.reachable)(s.centre.start) || (settings.reachable)(s.centre.end)
     };
@@ -179,6 +153,46 @@ fn fill_part(part: &Polygon, centres: &MultiPolygon, settings: &FillSettings) ->
         fill: true,
     });
     Some(swaths)
+}
+
+/// Where pieces working a part may run.
+pub(crate) struct Lanes {
+    /// The part where it is at least half a width across (the part inset by a quarter width).
+    pub core: MultiPolygon,
+    /// Within how far a centre line's strip reaches the core (half a width round it).
+    pub near: MultiPolygon,
+    /// Where a centre line may run to work the core: in `near`, its strip in the field.
+    pub lanes: MultiPolygon,
+}
+
+/// The lanes of `part` among `centres` (where a strip's centre line may run), for an implement
+/// `w` wide; `None` where the part is nowhere half a width across or no lane reaches it.
+pub(crate) fn lanes(part: &Polygon, centres: &MultiPolygon, w: f64) -> Option<Lanes> {
+    let part = MultiPolygon::new(vec![part.clone()]);
+    let core = inset(&part, w / 4.0);
+    if core.unsigned_area() <= 0.0 {
+        return None;
+    }
+    let near = outset(&core, w / 2.0 - REACH_SLACK_M);
+    let box_of = near.bounding_rect()?;
+    // Only the holes near the part matter (a field of 2,000 ponds is one polygon with 2,000
+    // holes).
+    let nearby: Vec<Polygon> = centres
+        .0
+        .iter()
+        .filter(|p| p.bounding_rect().is_some_and(|b| b.intersects(&box_of)))
+        .map(|p| {
+            let holes = p
+                .interiors()
+                .iter()
+                .filter(|h| h.bounding_rect().is_some_and(|b| b.intersects(&box_of)))
+                .cloned()
+                .collect();
+            Polygon::new(p.exterior().clone(), holes)
+        })
+        .collect();
+    let lanes = MultiPolygon::new(nearby).intersection(&near);
+    (lanes.unsigned_area() > 0.0).then_some(Lanes { core, near, lanes })
 }
 
 /// The area the implement works along `swaths`: their strips, `width` wide, as one region.
