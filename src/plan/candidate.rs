@@ -23,7 +23,7 @@ use crate::options::PlanOptions;
 use crate::path::{build_path, Path};
 use crate::prohibited::{forbidding, split};
 use crate::route::headland_graph::HeadlandGraph;
-use crate::route::{plan_route, plan_route_on, Route, RouteSettings};
+use crate::route::{plan_route, plan_route_on, Route, RouteSettings, RouteStep};
 use crate::swath::{
     generate_with, generate_within, lifts, LinePlacement, Swath, SwathArea, SwathSettings, Swaths,
 };
@@ -140,6 +140,9 @@ pub(super) fn fill_leftovers(
         .flat_map(|p| p.swaths.iter().map(|s| vec![s.centre.start, s.centre.end]))
         .collect();
     tally.work(&fill_lines);
+    // Fill passes are driven with their corners rounded: counted along the path once it is
+    // built, on the tally as it is before them.
+    let mut before_passes = tally.clone();
     // What the straight pieces leave of narrow arms and bent strips: passes along its outline.
     let along = if pieces.is_empty() && before.uncovered.is_empty() {
         Vec::new()
@@ -182,6 +185,7 @@ pub(super) fn fill_leftovers(
         swaths.append(p);
     }
     let along_passes = !along.is_empty();
+    let first_fill_pass = headlands.passes.len();
     headlands.passes.extend(along);
     let blocks = cluster_swaths(&swaths);
     let laid = Laid {
@@ -201,13 +205,11 @@ pub(super) fn fill_leftovers(
     let (route, path, summary) = route_and_path(prep, &laid, &blocks, None, &mut warnings, times)?;
     let path = path.unwrap_or_default();
     let mut clock = Instant::now();
-    // Passes are driven with their corners rounded: measured along the path.
-    let after = match Tally::new(&prep.field.boundary, &obstacles, width) {
-        Some(mut t) if along_passes => {
-            t.work(&worked_lines(&laid.swaths, &route, &path));
-            t.coverage()
-        }
-        _ => tally.coverage(),
+    let after = if along_passes {
+        before_passes.work(&fill_pass_lines(&route, &path, first_fill_pass));
+        before_passes.coverage()
+    } else {
+        tally.coverage()
     };
     times.lap(&mut clock, |t| &mut t.metrics);
     let filled = Worked {
@@ -225,6 +227,21 @@ pub(super) fn fill_leftovers(
         machine,
     };
     Ok((filled, after))
+}
+
+/// The lines the path works along the headland passes from `first` on (the fill passes).
+fn fill_pass_lines(route: &Route, path: &Path, first: usize) -> Vec<Vec<geo::Coord>> {
+    path.segments
+        .iter()
+        .filter(|seg| seg.is_working())
+        .filter(|seg| {
+            matches!(
+                seg.step.and_then(|i| route.steps.get(i)),
+                Some(&RouteStep::HeadlandPass { pass, .. }) if pass >= first
+            )
+        })
+        .map(|seg| seg.line.0.clone())
+        .collect()
 }
 
 /// Rounds of fill passes along the outline of what is left ([`passes_along`]): each round
