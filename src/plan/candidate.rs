@@ -140,9 +140,6 @@ pub(super) fn fill_leftovers(
         .flat_map(|p| p.swaths.iter().map(|s| vec![s.centre.start, s.centre.end]))
         .collect();
     tally.work(&fill_lines);
-    // Fill passes are driven with their corners rounded: counted along the path once it is
-    // built, on the tally as it is before them.
-    let mut before_passes = tally.clone();
     // What the straight pieces leave of narrow arms and bent strips: passes along its outline.
     let along = if pieces.is_empty() && before.uncovered.is_empty() {
         Vec::new()
@@ -160,11 +157,13 @@ pub(super) fn fill_leftovers(
                 .iter()
                 .map(|s| geo::LineString::new(vec![s.centre.start, s.centre.end]))
         }));
-        let ways = Ways {
-            passes: &worked.headlands.passes,
-            tracks: &tracks,
+        let graph = HeadlandGraph::with_tracks(&worked.headlands.passes, &tracks, width);
+        let reaches = |p: geo::Coord| graph.reaches(p);
+        let settings = FillSettings {
+            reachable: &reaches,
+            ..settings
         };
-        passes_along_in_rounds(&mut tally, left, &centres, &settings, &ways)
+        passes_along(&left, &centres, &settings)
     };
     times.lap(&mut clock, |t| &mut t.metrics);
     if pieces.is_empty() && along.is_empty() {
@@ -186,7 +185,14 @@ pub(super) fn fill_leftovers(
     }
     let along_passes = !along.is_empty();
     let first_fill_pass = headlands.passes.len();
-    headlands.passes.extend(along);
+    headlands
+        .passes
+        .extend(along.into_iter().map(|p| HeadlandPass {
+            index: 1,
+            line: p.line,
+            closed: p.closed,
+            around: PassAround::Fill,
+        }));
     let blocks = cluster_swaths(&swaths);
     let laid = Laid {
         headlands,
@@ -205,12 +211,11 @@ pub(super) fn fill_leftovers(
     let (route, path, summary) = route_and_path(prep, &laid, &blocks, None, &mut warnings, times)?;
     let path = path.unwrap_or_default();
     let mut clock = Instant::now();
-    let after = if along_passes {
-        before_passes.work(&fill_pass_lines(&route, &path, first_fill_pass));
-        before_passes.coverage()
-    } else {
-        tally.coverage()
-    };
+    // Fill passes are driven with their corners rounded: counted along their path.
+    if along_passes {
+        tally.work(&fill_pass_lines(&route, &path, first_fill_pass));
+    }
+    let after = tally.coverage();
     times.lap(&mut clock, |t| &mut t.metrics);
     let filled = Worked {
         method,
@@ -242,58 +247,6 @@ fn fill_pass_lines(route: &Route, path: &Path, first: usize) -> Vec<Vec<geo::Coo
         })
         .map(|seg| seg.line.0.clone())
         .collect()
-}
-
-/// Rounds of fill passes along the outline of what is left ([`passes_along`]): each round
-/// works what the rounds before leave of `left`, reached along them as well as along `ways`.
-/// `tally` is worked by the passes laid.
-fn passes_along_in_rounds(
-    tally: &mut Tally,
-    mut left: Vec<crate::coverage::Uncovered>,
-    centres: &geo::MultiPolygon,
-    settings: &FillSettings,
-    ways: &Ways,
-) -> Vec<HeadlandPass> {
-    let mut laid: Vec<HeadlandPass> = Vec::new();
-    for round in 0..FILL_PASS_ROUNDS {
-        if left.is_empty() {
-            break;
-        }
-        let mut passes = ways.passes.to_vec();
-        passes.extend(laid.iter().cloned());
-        let graph = HeadlandGraph::with_tracks(&passes, ways.tracks, settings.width);
-        let reaches = |p: geo::Coord| graph.reaches(p);
-        let round_settings = FillSettings {
-            reachable: &reaches,
-            ..*settings
-        };
-        let new = passes_along(&left, centres, &round_settings);
-        if new.is_empty() {
-            break;
-        }
-        let lines: Vec<Vec<geo::Coord>> = new.iter().map(|p| p.line.0.clone()).collect();
-        tally.work(&lines);
-        laid.extend(new.into_iter().map(|p| HeadlandPass {
-            index: 1,
-            line: p.line,
-            closed: p.closed,
-            around: PassAround::Fill,
-        }));
-        if round + 1 < FILL_PASS_ROUNDS {
-            left = tally.coverage().uncovered;
-        }
-    }
-    laid
-}
-
-/// Rounds of fill passes at most: a strip more than four widths across, left by passes round
-/// a part, gets passes round what it leaves in turn.
-const FILL_PASS_ROUNDS: usize = 3;
-
-/// The lines the machine drives along without crossing crop once the field's swaths are worked.
-struct Ways<'a> {
-    passes: &'a [HeadlandPass],
-    tracks: &'a [geo::LineString],
 }
 
 /// Routes, paths and measures the swaths laid, taking the route and path of a candidate worked
