@@ -92,7 +92,8 @@ pub(super) fn work(
 }
 
 /// Fills what the chosen candidate leaves standing ([`crate::fill`]): the fill's swaths join
-/// its swaths as blocks of their own, and the plan is routed, pathed and measured again. Gives
+/// its swaths as blocks of their own, its passes along what those leave ([`passes_along`]) the
+/// headland passes, and the plan is routed, pathed and measured again. Gives
 /// the plan with the coverage of its path.
 pub(super) fn fill_leftovers(
     prep: &Prepared,
@@ -151,14 +152,12 @@ pub(super) fn fill_leftovers(
         };
         // Reached along the straight pieces' tracks too: they are worked before the passes
         // when these come last.
-        let mut tracks = tracks.clone();
-        tracks.extend(pieces.iter().flat_map(|p| {
-            p.swaths
-                .iter()
-                .map(|s| geo::LineString::new(vec![s.centre.start, s.centre.end]))
-        }));
-        let graph = HeadlandGraph::with_tracks(&worked.headlands.passes, &tracks, width);
-        let reaches = |p: geo::Coord| graph.reaches(p);
+        let with_pieces = (!pieces.is_empty()).then(|| {
+            let mut tracks = tracks.clone();
+            tracks.extend(fill_lines.iter().map(|l| geo::LineString::new(l.clone())));
+            HeadlandGraph::with_tracks(&worked.headlands.passes, &tracks, width)
+        });
+        let reaches = |p: geo::Coord| with_pieces.as_ref().unwrap_or(&graph).reaches(p);
         let settings = FillSettings {
             reachable: &reaches,
             ..settings
