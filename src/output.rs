@@ -392,12 +392,12 @@ impl Plan {
 
     /// The block of the swath driven just before path segment `k`.
     fn block_before(&self, k: usize) -> Option<usize> {
-        self.path.segments[..k].iter().rev().find_map(|s| {
-            match s.step.and_then(|i| self.route.steps.get(i)) {
-                Some(&RouteStep::Swath { block, .. }) => Some(block),
-                _ => None,
-            }
-        })
+        // A turn's block is that of the swath it leaves (a manoeuvre on a headland pass has none).
+        let before = k.checked_sub(1).and_then(|i| self.path.segments.get(i))?;
+        match before.step.and_then(|i| self.route.steps.get(i)) {
+            Some(&RouteStep::Swath { block, .. }) => Some(block),
+            _ => None,
+        }
     }
 }
 

@@ -10,7 +10,9 @@
 //! tighter than the machine turns. A corner too sharp to round within the edges either side (a
 //! cusp of a headland pass where a neck was cut, a spur onto a pass at right angles) gets a
 //! manoeuvre instead: the vehicle's cheapest turn from the end of one edge to the start of the
-//! next (a loop, or a three-point turn where it may reverse).
+//! next (a loop, or a three-point turn where it may reverse). [`follow_in`] reports those
+//! manoeuvres, so that the path drives them as turns with the implement lifted, and chooses
+//! each to stay inside the field where one of the machine's turns does.
 //!
 //! ```
 //! use furrow::path::curve;
@@ -30,9 +32,10 @@
 //! ```
 
 use super::curve::{wrap, Gear, Pose, Segment};
-use super::turn::Vehicle;
+use super::turn::{Area, Turn, TurnForm, Vehicle};
 use crate::geometry::PlanarHypot;
 use geo::Coord;
+use std::ops::Range;
 
 /// Most length of edges (in turning radii) a rounding may leave out between two others.
 const MAX_SKIPPED_RADII: f64 = 3.0;
@@ -40,10 +43,48 @@ const MAX_SKIPPED_RADII: f64 = 3.0;
 /// Points closer than this (metres) are one.
 const SAME_POINT_M: f64 = 1e-6;
 
+/// A manoeuvre at a corner too sharp to round: which pieces of the followed path it is, its
+/// form, and whether it stays inside the area it was chosen in (true when none was given).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Manoeuvre {
+    /// Its pieces, as positions in the path.
+    pub pieces: Range<usize>,
+    /// Its form.
+    pub form: TurnForm,
+    /// Whether it stays inside the area.
+    pub inside: bool,
+}
+
 /// The path along `points` at the vehicle's limits (see the module documentation): it starts at
 /// the first point facing along the first edge and ends at the last point facing along the last
 /// edge. Empty for fewer than two distinct points.
 pub fn follow(points: &[Coord], v: &Vehicle) -> Vec<Segment> {
+    follow_in(points, v, None).0
+}
+
+/// [`follow`], with the manoeuvres at corners too sharp to round: each the cheapest that stays in
+/// `area` where one does (else the cheapest, `inside: false`), reported in driving order.
+///
+/// ```
+/// use furrow::path::follow::follow_in;
+/// use furrow::path::turn::{Area, Vehicle};
+/// use geo::{coord, polygon};
+///
+/// let v = Vehicle { turn_radius: 8.0, reverse: true, ..Vehicle::default() };
+/// // Up a strip 12 m wide and back: at its dead end the machine turns round inside the strip.
+/// let strip = polygon![(x: -10., y: -6.), (x: 100., y: -6.), (x: 100., y: 6.), (x: -10., y: 6.)];
+/// let line = [coord! { x: 0., y: -3. }, coord! { x: 90., y: -3. }, coord! { x: 90., y: 3. },
+///     coord! { x: 0., y: 3. }];
+/// let (path, manoeuvres) = follow_in(&line, &v, Some(&Area::new(&strip, &[])));
+/// assert_eq!(manoeuvres.len(), 1);
+/// assert!(manoeuvres[0].inside);
+/// assert!(path[manoeuvres[0].pieces.clone()].iter().any(|s| s.gear == furrow::path::curve::Gear::Reverse));
+/// ```
+pub fn follow_in(
+    points: &[Coord],
+    v: &Vehicle,
+    area: Option<&Area>,
+) -> (Vec<Segment>, Vec<Manoeuvre>) {
     let mut pts: Vec<Coord> = Vec::with_capacity(points.len());
     for &p in points {
         if !(p.x.is_finite() && p.y.is_finite()) {
@@ -56,8 +97,9 @@ pub fn follow(points: &[Coord], v: &Vehicle) -> Vec<Segment> {
             pts.push(p);
         }
     }
+    let mut manoeuvres: Vec<Manoeuvre> = Vec::new();
     if pts.len() < 2 {
-        return Vec::new();
+        return (Vec::new(), manoeuvres);
     }
     let edges: Vec<Edge> = pts.windows(2).map(|w| Edge::new(w[0], w[1])).collect();
     let max_skip = MAX_SKIPPED_RADII * v.turn_radius;
@@ -152,27 +194,51 @@ pub fn follow(points: &[Coord], v: &Vehicle) -> Vec<Segment> {
                 skipped += edges[m].length;
                 m += 1;
             }
-            // Where along it: the join that costs least over the stretch it replaces.
+            // Where along it: a bend the machine drives forward with the implement down where
+            // one joins (a jog of the line: the join that drives least, the stretch it replaces
+            // counted off), else a manoeuvre with the implement lifted (the one inside the area,
+            // where one is, that costs least, the stretch it skips counted as driven again: its
+            // crop is left standing).
             let room = if m + 1 < edges.len() {
                 edges[m].length / 2.0
             } else {
                 edges[m].length
             };
-            let mut best: Option<(f64, f64, Vec<Segment>)> = None;
-            for k in [0.5, 1.0, 2.0, 3.0] {
+            let deflection = wrap(edges[m].heading - edges[a].heading).abs();
+            let mut best: Option<(f64, f64, Turn)> = None;
+            for k in [0.0, 0.5, 1.0, 2.0, 3.0] {
                 let into = (k * v.turn_radius).min(room);
                 let at = edges[m].from + edges[m].dir * into;
                 let onto = Pose::new(at.x, at.y, edges[m].heading);
-                let turn = v.shortest(position, onto);
-                let cost = turn.length() - into;
+                let turn = match area {
+                    Some(area) => v.turn(position, onto, area),
+                    None => v.shortest(position, onto),
+                };
+                let cost = if is_bend(&turn, deflection) {
+                    turn.cost() - into - 1e9
+                } else {
+                    turn.cost() + into
+                } + if turn.inside { 0.0 } else { 1e6 };
                 if best.as_ref().is_none_or(|b| cost < b.0 - 1e-9) {
-                    best = Some((cost, into, turn.segments));
+                    best = Some((cost, into, turn));
                 }
             }
-            let (into, segments) = best.map_or((0.0, Vec::new()), |b| (b.1, b.2));
-            for seg in segments {
-                position = seg.end();
-                out.push(seg);
+            let first = out.len();
+            let mut into = 0.0;
+            if let Some((_, at, turn)) = best {
+                into = at;
+                let bend = is_bend(&turn, deflection);
+                out.extend(turn.segments);
+                if !bend {
+                    manoeuvres.push(Manoeuvre {
+                        pieces: first..out.len(),
+                        form: turn.form,
+                        inside: turn.inside,
+                    });
+                }
+            }
+            if let Some(last) = out.last() {
+                position = last.end();
             }
             position.heading = edges[m].heading;
             a = m;
@@ -181,7 +247,7 @@ pub fn follow(points: &[Coord], v: &Vehicle) -> Vec<Segment> {
         }
     }
     push_line(&mut out, &mut position, edges[a].length - a_from);
-    out
+    (out, manoeuvres)
 }
 
 /// The path all the way round a closed ring (its first point repeated last) at the vehicle's
@@ -217,8 +283,17 @@ pub fn follow(points: &[Coord], v: &Vehicle) -> Vec<Segment> {
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn follow_round(ring: &[Coord], v: &Vehicle) -> Vec<Segment> {
+    follow_round_in(ring, v, None).0
+}
+
+/// [`follow_round`], with its manoeuvres chosen and reported as [`follow_in`] does.
+pub fn follow_round_in(
+    ring: &[Coord],
+    v: &Vehicle,
+    area: Option<&Area>,
+) -> (Vec<Segment>, Vec<Manoeuvre>) {
     let (Some(&first), Some(&last)) = (ring.first(), ring.last()) else {
-        return Vec::new();
+        return (Vec::new(), Vec::new());
     };
     let closed =
         ring.len() >= 4 && (first.x - last.x).planar_hypot(first.y - last.y) <= SAME_POINT_M;
@@ -227,10 +302,10 @@ pub fn follow_round(ring: &[Coord], v: &Vehicle) -> Vec<Segment> {
         .copied()
         .find(|p| (p.x - first.x).planar_hypot(p.y - first.y) > SAME_POINT_M)
     else {
-        return Vec::new();
+        return (Vec::new(), Vec::new());
     };
     if !closed {
-        return follow(ring, v);
+        return follow_in(ring, v, area);
     }
     let edge = Edge::new(first, second);
     let ring_length: f64 = ring
@@ -248,10 +323,18 @@ pub fn follow_round(ring: &[Coord], v: &Vehicle) -> Vec<Segment> {
         extended.push(w[1]);
         again += (w[1].x - w[0].x).planar_hypot(w[1].y - w[0].y);
     }
-    let path = follow(&extended, v);
+    let (path, mut manoeuvres) = follow_in(&extended, v, area);
     match back_on_first_edge(&path, &edge, ring_length / 2.0, v.turn_radius) {
-        Some(cut) => cut_at(path, cut),
-        None => follow(ring, v),
+        Some(cut) => {
+            let path = cut_at(path, cut);
+            // A manoeuvre the cut ends within is cut with it; one after it is dropped.
+            manoeuvres.retain_mut(|m| {
+                m.pieces.end = m.pieces.end.min(path.len());
+                m.pieces.start < m.pieces.end
+            });
+            (path, manoeuvres)
+        }
+        None => follow_in(ring, v, area),
     }
 }
 
@@ -297,6 +380,24 @@ fn back_on_first_edge(path: &[Segment], edge: &Edge, from: f64, radius: f64) -> 
         done += seg.length;
     }
     None
+}
+
+/// Whether a join is a bend driven on with the implement down: inside the area, forward
+/// throughout, making a `deflection` of at most three eighths of a turn (a corner cut), and
+/// turning in all (either way) at most a sixth of a turn more than that. A sharper join (a dead
+/// end, a cusp) is a manoeuvre.
+fn is_bend(turn: &Turn, deflection: f64) -> bool {
+    if deflection > 0.75 * std::f64::consts::PI + 1e-9 {
+        return false;
+    }
+    let mut turned = 0.0;
+    for s in &turn.segments {
+        if s.gear != Gear::Forward {
+            return false;
+        }
+        turned += (s.curvature.abs() + s.sharpness.abs() * s.length / 2.0) * s.length;
+    }
+    turn.inside && turned <= deflection + std::f64::consts::FRAC_PI_3 + 1e-9
 }
 
 /// `path` cut `at` metres from its start.
@@ -443,6 +544,53 @@ mod tests {
             e.distance(&Pose::new(pts[2].x, pts[2].y, 0.0)) < 1e-6,
             "{e:?}"
         );
+    }
+
+    #[test]
+    fn a_jog_is_a_bend_worked_on_and_a_dead_end_a_manoeuvre() {
+        let v = Vehicle {
+            turn_radius: 8.0,
+            ..Vehicle::default()
+        };
+        // A line that steps 1.5 m aside over a metre (a notch of an outline): too tight to round
+        // corner by corner, it is an S-bend driven forward, not a manoeuvre.
+        let jog = [
+            coord! { x: 0.0, y: 0.0 },
+            coord! { x: 50.0, y: 0.0 },
+            coord! { x: 51.0, y: 1.5 },
+            coord! { x: 100.0, y: 1.5 },
+        ];
+        let (path, manoeuvres) = follow_in(&jog, &v, None);
+        check_continuous(&path, 1.0 / 8.0);
+        assert!(manoeuvres.is_empty(), "{manoeuvres:?}");
+        assert!(path.iter().all(|s| s.gear == Gear::Forward));
+        // Up and back 6 m aside: a dead end, turned at with a manoeuvre (a loop, forward only)
+        // that starts where the line turns back and ends on the way back.
+        let dead_end = [
+            coord! { x: 0.0, y: 0.0 },
+            coord! { x: 60.0, y: 0.0 },
+            coord! { x: 60.0, y: 6.0 },
+            coord! { x: 0.0, y: 6.0 },
+        ];
+        let (path, manoeuvres) = follow_in(&dead_end, &v, None);
+        check_continuous(&path, 1.0 / 8.0);
+        assert_eq!(manoeuvres.len(), 1);
+        let m = &manoeuvres[0];
+        let start = path[m.pieces.start].start;
+        assert!(
+            (start.x - 60.0).abs() < 1e-6 && start.y.abs() < 1e-6,
+            "{start:?}"
+        );
+        let end = path[m.pieces.end - 1].end();
+        assert!(
+            (end.y - 6.0).abs() < 1e-6 && end.x <= 60.0 + 1e-6,
+            "{end:?}"
+        );
+        let turned: f64 = path[m.pieces.clone()]
+            .iter()
+            .map(|s| s.curvature.abs() * s.length)
+            .sum();
+        assert!(turned > PI, "a loop turns more than half round: {turned}");
     }
 
     #[test]

@@ -7,7 +7,8 @@
 //! ends, facing the same way:
 //! - a swath is its centre line;
 //! - a headland pass follows its centre line with its corners rounded at the vehicle's limits
-//!   ([`follow`]);
+//!   ([`follow`]); at a corner too sharp to round (a dead end, a cusp) the implement is lifted
+//!   for a `turn` of its own, the manoeuvre that stays in the field where one does;
 //! - a turn is the cheapest form the vehicle can drive between the two swath ends that stays in
 //!   the field ([`turn`]: Dubins, Reeds-Shepp, three-point, continuous-curvature); turns that
 //!   cannot stay in are kept, marked and counted;
@@ -32,7 +33,7 @@ use crate::headland::HeadlandPass;
 use crate::route::{nearest_on_ring, Route, RouteStep};
 use crate::swath::Swaths;
 use curve::{Gear, Pose, Segment};
-use follow::{follow, follow_round};
+use follow::{follow, follow_in, follow_round_in, Manoeuvre};
 use geo::{Coord, Euclidean, Length, LineString};
 use turn::{Area, TurnForm, Vehicle};
 
@@ -43,7 +44,8 @@ pub enum SegmentKind {
     Swath,
     /// Working along a headland pass.
     HeadlandPass,
-    /// Turning from the end of one swath to the next swath of the same block.
+    /// Turning from the end of one swath to the next swath of the same block, or a manoeuvre
+    /// at a sharp corner or dead end of a headland pass (the implement lifted).
     Turn,
     /// Driving without working between blocks, or between swaths and headland passes.
     Connection,
@@ -206,9 +208,10 @@ pub fn build_path(
     vehicle: &Vehicle,
     area: Option<&Area>,
 ) -> Path {
-    // The worked segments first, each with the connection the route found into it.
+    // The worked segments first (a headland pass with manoeuvres is several, with the turns
+    // between), each step with the connection the route found into it.
     struct Worked {
-        segment: PathSegment,
+        segments: Vec<PathSegment>,
         block: Option<usize>,
         into: Option<LineString>,
     }
@@ -220,7 +223,7 @@ pub fn build_path(
             .get(k)
             .and_then(|c| c.as_ref())
             .map(|c| c.line.clone());
-        let (pieces, kind, block) = match *step {
+        let (segments, block) = match *step {
             RouteStep::Swath {
                 swath,
                 reversed,
@@ -236,9 +239,9 @@ pub fn build_path(
                 };
                 let d = b - a;
                 let start = Pose::new(a.x, a.y, d.y.atan2(d.x));
+                let line = Segment::line(start, d.x.planar_hypot(d.y), Gear::Forward);
                 (
-                    vec![Segment::line(start, d.x.planar_hypot(d.y), Gear::Forward)],
-                    SegmentKind::Swath,
+                    vec![PathSegment::new(SegmentKind::Swath, vec![line], Some(k))],
                     Some(block),
                 )
             }
@@ -246,7 +249,7 @@ pub fn build_path(
                 let Some(p) = passes.get(pass) else {
                     continue;
                 };
-                let pieces = if p.closed {
+                let (pieces, manoeuvres) = if p.closed {
                     // Where the connection into it ends, else where the machine is.
                     let at = into
                         .as_ref()
@@ -254,23 +257,22 @@ pub fn build_path(
                         .or(last_point);
                     let (_, entry) = nearest_on_ring(&p.line, at);
                     // All the way round, back to where it was entered.
-                    follow_round(&ring_starting_at(&p.line, entry).0, vehicle)
+                    follow_round_in(&ring_starting_at(&p.line, entry).0, vehicle, area)
                 } else if reversed {
                     let line: Vec<Coord> = p.line.0.iter().rev().copied().collect();
-                    follow(&line, vehicle)
+                    follow_in(&line, vehicle, area)
                 } else {
-                    follow(&p.line.0, vehicle)
+                    follow_in(&p.line.0, vehicle, area)
                 };
-                (pieces, SegmentKind::HeadlandPass, None)
+                (pass_segments(pieces, &manoeuvres, k), None)
             }
         };
-        if pieces.is_empty() {
+        let Some(end) = segments.last().and_then(PathSegment::end) else {
             continue;
-        }
-        let segment = PathSegment::new(kind, pieces, Some(k));
-        last_point = segment.end().map(|p| Coord { x: p.x, y: p.y });
+        };
+        last_point = Some(Coord { x: end.x, y: end.y });
         worked.push(Worked {
-            segment,
+            segments,
             block,
             into,
         });
@@ -278,7 +280,7 @@ pub fn build_path(
     let mut segments: Vec<PathSegment> = Vec::with_capacity(worked.len() * 2 + 2);
     let mut previous: Option<(Pose, Option<usize>)> = None;
     for w in worked {
-        let Some(start) = w.segment.start() else {
+        let Some(start) = w.segments.first().and_then(PathSegment::start) else {
             continue;
         };
         match previous {
@@ -301,8 +303,12 @@ pub fn build_path(
                 }
             }
         }
-        previous = w.segment.end().map(|e| (e, w.block));
-        segments.push(w.segment);
+        previous = w
+            .segments
+            .last()
+            .and_then(PathSegment::end)
+            .map(|e| (e, w.block));
+        segments.extend(w.segments);
     }
     if let Some(c) = &route.finish {
         if let Some(f) = connection(previous.map(|p| p.0), None, Some(&c.line), vehicle, area) {
@@ -310,6 +316,54 @@ pub fn build_path(
         }
     }
     Path { segments }
+}
+
+/// The path's segments along a headland pass (route step `step`): its pieces worked, each of its
+/// manoeuvres a turn of its own with the implement lifted.
+fn pass_segments(pieces: Vec<Segment>, manoeuvres: &[Manoeuvre], step: usize) -> Vec<PathSegment> {
+    let mut out = Vec::with_capacity(2 * manoeuvres.len() + 1);
+    let mut rest = pieces.into_iter();
+    let mut at = 0;
+    for m in manoeuvres {
+        let worked: Vec<Segment> = rest.by_ref().take(m.pieces.start - at).collect();
+        if !worked.is_empty() {
+            out.push(PathSegment::new(
+                SegmentKind::HeadlandPass,
+                worked,
+                Some(step),
+            ));
+        }
+        let turn: Vec<Segment> = rest.by_ref().take(m.pieces.len()).collect();
+        if let Some(from) = turn.first().map(|s| s.start) {
+            out.push(turn_segment(from, turn, m.form.clone(), m.inside));
+        }
+        at = m.pieces.end;
+    }
+    let worked: Vec<Segment> = rest.collect();
+    if !worked.is_empty() {
+        out.push(PathSegment::new(
+            SegmentKind::HeadlandPass,
+            worked,
+            Some(step),
+        ));
+    }
+    out
+}
+
+/// A turn of these pieces from `from`, reported with its form, whether it stays inside and how
+/// far it reaches ahead of `from`.
+fn turn_segment(from: Pose, pieces: Vec<Segment>, form: TurnForm, inside: bool) -> PathSegment {
+    let (s, c) = from.heading.sin_cos();
+    let mut reach: f64 = 0.0;
+    let mut seg = PathSegment::new_visiting(SegmentKind::Turn, pieces, None, |q| {
+        reach = reach.max((q.x - from.x) * c + (q.y - from.y) * s);
+    });
+    seg.turn = Some(TurnReport {
+        form,
+        inside,
+        reach_m: reach,
+    });
+    seg
 }
 
 /// The turn between two swath ends of a block.
@@ -325,17 +379,7 @@ fn swath_turn(from: Pose, to: Pose, v: &Vehicle, area: Option<&Area>) -> Option<
             t
         }
     };
-    let (s, c) = from.heading.sin_cos();
-    let mut reach: f64 = 0.0;
-    let mut seg = PathSegment::new_visiting(SegmentKind::Turn, t.segments, None, |q| {
-        reach = reach.max((q.x - from.x) * c + (q.y - from.y) * s);
-    });
-    seg.turn = Some(TurnReport {
-        form: t.form,
-        inside: t.inside,
-        reach_m: reach,
-    });
-    Some(seg)
+    Some(turn_segment(from, t.segments, t.form, t.inside))
 }
 
 /// A connection from `from` (or the line's first point) to `to` (or its last point) along
@@ -594,7 +638,15 @@ mod tests {
             let b = w[1].line.0[0];
             assert!((a.x - b.x).planar_hypot(a.y - b.y) < 1e-9);
         }
-        assert_eq!(path.count_of(SegmentKind::HeadlandPass), 1);
+        // The pass is driven in one go: entered near a corner too tight to round from there,
+        // it starts with a manoeuvre (a turn) and goes on round.
+        let pass_steps: Vec<_> = path
+            .segments
+            .iter()
+            .filter(|s| s.kind == SegmentKind::HeadlandPass)
+            .map(|s| s.step)
+            .collect();
+        assert!(!pass_steps.is_empty() && pass_steps.iter().all(|&s| s == pass_steps[0]));
         assert_eq!(path.count_of(SegmentKind::Connection), 1);
     }
 }

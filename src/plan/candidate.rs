@@ -23,7 +23,7 @@ use crate::options::PlanOptions;
 use crate::path::{build_path, Path};
 use crate::prohibited::{forbidding, split};
 use crate::route::headland_graph::HeadlandGraph;
-use crate::route::{plan_route, plan_route_on, Route, RouteSettings, RouteStep};
+use crate::route::{plan_route, plan_route_on, Route, RouteSettings};
 use crate::swath::{
     generate_with, generate_within, lifts, LinePlacement, Swath, SwathArea, SwathSettings, Swaths,
 };
@@ -182,8 +182,6 @@ pub(super) fn fill_leftovers(
     for p in pieces {
         swaths.append(p);
     }
-    let along_passes = !along.is_empty();
-    let first_fill_pass = headlands.passes.len();
     headlands
         .passes
         .extend(along.into_iter().map(|p| HeadlandPass {
@@ -210,11 +208,15 @@ pub(super) fn fill_leftovers(
     let (route, path, summary) = route_and_path(prep, &laid, &blocks, None, &mut warnings, times)?;
     let path = path.unwrap_or_default();
     let mut clock = Instant::now();
-    // Fill passes are driven with their corners rounded: counted along their path.
-    if along_passes {
-        tally.work(&fill_pass_lines(&route, &path, first_fill_pass));
-    }
-    let after = tally.coverage();
+    // Counted again along the path as driven now: where the new route enters a headland pass
+    // decides where its manoeuvres lift the implement.
+    let after = Tally::new(&prep.field.boundary, &obstacles, width).map_or_else(
+        Coverage::default,
+        |mut tally| {
+            tally.work(&worked_lines(&laid.swaths, &route, &path));
+            tally.coverage()
+        },
+    );
     times.lap(&mut clock, |t| &mut t.metrics);
     let filled = Worked {
         method,
@@ -231,21 +233,6 @@ pub(super) fn fill_leftovers(
         machine,
     };
     Ok((filled, after))
-}
-
-/// The lines the path works along the headland passes from `first` on (the fill passes).
-fn fill_pass_lines(route: &Route, path: &Path, first: usize) -> Vec<Vec<geo::Coord>> {
-    path.segments
-        .iter()
-        .filter(|seg| seg.is_working())
-        .filter(|seg| {
-            matches!(
-                seg.step.and_then(|i| route.steps.get(i)),
-                Some(&RouteStep::HeadlandPass { pass, .. }) if pass >= first
-            )
-        })
-        .map(|seg| seg.line.0.clone())
-        .collect()
 }
 
 /// Routes, paths and measures the swaths laid, taking the route and path of a candidate worked
