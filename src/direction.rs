@@ -136,7 +136,18 @@ pub fn search_direction(
     step_deg: f64,
     forbidden: &[BearingRange],
     seeds: &[f64],
-    cost: impl FnMut(f64) -> f64,
+    mut cost: impl FnMut(f64) -> f64,
+) -> Result<SearchResult, PlanError> {
+    search_with(method, step_deg, forbidden, seeds, &mut cost)
+}
+
+/// [`search_direction`] with the cost behind a reference: one copy of the search for every cost.
+fn search_with(
+    method: SearchMethod,
+    step_deg: f64,
+    forbidden: &[BearingRange],
+    seeds: &[f64],
+    cost: &mut dyn FnMut(f64) -> f64,
 ) -> Result<SearchResult, PlanError> {
     let mut e = Evaluated::new(cost);
     e.seeds(seeds, forbidden);
@@ -186,13 +197,13 @@ fn no_direction() -> PlanError {
 }
 
 /// The directions a search evaluated, each once, with their costs (NaN counts as infinite).
-struct Evaluated<F: FnMut(f64) -> f64> {
-    cost: F,
+struct Evaluated<'a> {
+    cost: &'a mut dyn FnMut(f64) -> f64,
     list: Vec<(f64, f64)>,
 }
 
-impl<F: FnMut(f64) -> f64> Evaluated<F> {
-    fn new(cost: F) -> Self {
+impl<'a> Evaluated<'a> {
+    fn new(cost: &'a mut dyn FnMut(f64) -> f64) -> Self {
         Evaluated {
             cost,
             list: Vec::new(),
@@ -259,12 +270,12 @@ pub fn quick_search(
     step_deg: f64,
     forbidden: &[BearingRange],
     seeds: &[f64],
-    cost: impl FnMut(f64) -> f64,
+    mut cost: impl FnMut(f64) -> f64,
 ) -> Result<SearchResult, PlanError> {
     if method == SearchMethod::BruteForce {
-        return search_direction(method, step_deg, forbidden, seeds, cost);
+        return search_with(method, step_deg, forbidden, seeds, &mut cost);
     }
-    let mut e = Evaluated::new(cost);
+    let mut e = Evaluated::new(&mut cost);
     e.seeds(seeds, forbidden);
     for k in 0..6 {
         if let Some(b) = nearest_allowed((k as f64 * 30.0).to_radians(), forbidden) {
