@@ -235,7 +235,7 @@ export interface PlanFeatureProperties {
   index?: number;
   /** Position of a block in the order blocks are worked. */
   order?: number;
-  /** The block a swath or turn belongs to. */
+  /** The block a swath, or a turn between two of its swaths, belongs to. */
   block?: number;
   /** The swath line a swath lies on, counted across the field. */
   line?: number;
@@ -338,9 +338,9 @@ export interface PlanSummary {
   working_distance_m: number;
   swath_distance_m: number;
   headland_distance_m: number;
-  /** Turns between swaths of a block: the drivable turns of the path. */
+  /** Turns between swaths of a block and manoeuvres at dead ends and sharp corners of headland and fill passes: the drivable turns of the path. */
   turning_distance_m: number;
-  /** The same turns by the turn model the route optimises. */
+  /** The turns between swaths by the turn model the route optimises. */
   turn_model_distance_m: number;
   /** How many turns of each form (`u-turn`, `loop`, `three-point`, `reeds-shepp`, `cc-u-turn`, `cc-loop`). */
   turn_forms: Record<string, number>;
