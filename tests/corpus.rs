@@ -4,7 +4,7 @@
 
 mod common;
 
-use common::corpus::{fields_dir, invalid_fields, real_parcels, valid_fields};
+use common::corpus::{fields_dir, invalid_fields, passes_driven, real_parcels, valid_fields};
 use furrow::path::SegmentKind;
 use furrow::{plan_geojson, ErrorCode, Plan, PlanOptions};
 use geo::{Area, Contains, Coord, Distance, Euclidean, Point};
@@ -249,16 +249,8 @@ fn check_path(plan: &Plan, name: &str) {
         plan.swaths.swaths.len(),
         "{name}"
     );
-    // Every headland pass is driven (in several segments where it has manoeuvres).
-    let mut passes_driven: Vec<usize> = plan
-        .path
-        .segments
-        .iter()
-        .filter(|s| s.kind == SegmentKind::HeadlandPass)
-        .filter_map(|s| s.step)
-        .collect();
-    passes_driven.dedup();
-    assert_eq!(passes_driven.len(), plan.headlands.passes.len(), "{name}");
+    // Every headland pass is driven.
+    assert_eq!(passes_driven(plan), plan.headlands.passes.len(), "{name}");
     let geojson: serde_json::Value =
         serde_json::from_str(&plan.to_geojson_string()).expect("plan output is JSON");
     let mut next = 0;

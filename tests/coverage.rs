@@ -119,36 +119,48 @@ fn independent_coverage(plan: &Plan, step: f64) -> f64 {
         corner_buckets.entry(key(c)).or_default().push(c);
     }
     let (mut inside, mut worked) = (0usize, 0usize);
-    let offset = (std::f64::consts::FRAC_1_PI * step, 0.577_215_664 * step);
-    let mut y = rect.min().y + offset.1;
-    while y < rect.max().y {
-        let mut x = rect.min().x + offset.0;
-        while x < rect.max().x {
-            let p = Coord { x, y };
-            if boundary.contains(&Point(p)) && !obstacles.iter().any(|o| o.contains(&Point(p))) {
-                inside += 1;
-                let (i, j) = key(p);
-                let near_stretch = buckets
-                    .get(&(i, j))
-                    .is_some_and(|ks| ks.iter().any(|&k| in_strip(p, stretches[k], half)));
-                let near_corner = || {
-                    (i - 1..=i + 1).any(|i| {
-                        (j - 1..=j + 1).any(|j| {
-                            corner_buckets.get(&(i, j)).is_some_and(|cs| {
-                                cs.iter().any(|c| (c.x - p.x).hypot(c.y - p.y) <= half)
-                            })
+    for p in grid_points(rect, 0.0, step) {
+        if boundary.contains(&Point(p)) && !obstacles.iter().any(|o| o.contains(&Point(p))) {
+            inside += 1;
+            let (i, j) = key(p);
+            let near_stretch = buckets
+                .get(&(i, j))
+                .is_some_and(|ks| ks.iter().any(|&k| in_strip(p, stretches[k], half)));
+            let near_corner = || {
+                (i - 1..=i + 1).any(|i| {
+                    (j - 1..=j + 1).any(|j| {
+                        corner_buckets.get(&(i, j)).is_some_and(|cs| {
+                            cs.iter().any(|c| (c.x - p.x).hypot(c.y - p.y) <= half)
                         })
                     })
-                };
-                if near_stretch || near_corner() {
-                    worked += 1;
-                }
+                })
+            };
+            if near_stretch || near_corner() {
+                worked += 1;
             }
-            x += step;
         }
-        y += step;
     }
     worked as f64 / inside.max(1) as f64
+}
+
+/// Points `step` metres apart over `rect` grown by `margin`, moved off its corner by fixed
+/// irrational fractions of the step (off any grid the planner uses).
+fn grid_points(rect: geo::Rect, margin: f64, step: f64) -> impl Iterator<Item = Coord> {
+    let (x0, y0) = (
+        rect.min().x - margin + std::f64::consts::FRAC_1_PI * step,
+        rect.min().y - margin + 0.577_215_664 * step,
+    );
+    let (x1, y1) = (rect.max().x + margin, rect.max().y + margin);
+    let (nx, ny) = (
+        ((x1 - x0) / step).ceil().max(0.0) as usize,
+        ((y1 - y0) / step).ceil().max(0.0) as usize,
+    );
+    (0..ny).flat_map(move |j| {
+        (0..nx).map(move |i| Coord {
+            x: x0 + i as f64 * step,
+            y: y0 + j as f64 * step,
+        })
+    })
 }
 
 /// Area (m²) worked outside the field or over an obstacle, counted at points `step` metres apart
@@ -161,24 +173,17 @@ fn worked_outside(plan: &Plan, step: f64) -> f64 {
     let obstacles: Vec<&Polygon> = plan.field.obstacles.iter().map(|o| &o.polygon).collect();
     let rect = geo::BoundingRect::bounding_rect(boundary).expect("bounds");
     let mut count = 0usize;
-    let mut y = rect.min().y - half + 0.577_215_664 * step;
-    while y < rect.max().y + half {
-        let mut x = rect.min().x - half + std::f64::consts::FRAC_1_PI * step;
-        while x < rect.max().x + half {
-            let p = Coord { x, y };
-            let outside =
-                !boundary.contains(&Point(p)) || obstacles.iter().any(|o| o.contains(&Point(p)));
-            // A point on the boundary's line is in neither; a strip along it touches it.
-            let off = boundary
-                .exterior()
-                .lines()
-                .all(|l| geo::Euclidean.distance(&l, &Point(p)) > 0.05);
-            if outside && off && stretches.iter().any(|&s| in_strip(p, s, half)) {
-                count += 1;
-            }
-            x += step;
+    for p in grid_points(rect, half, step) {
+        let outside =
+            !boundary.contains(&Point(p)) || obstacles.iter().any(|o| o.contains(&Point(p)));
+        // A point on the boundary's line is in neither; a strip along it touches it.
+        let off = boundary
+            .exterior()
+            .lines()
+            .all(|l| geo::Euclidean.distance(&l, &Point(p)) > 0.05);
+        if outside && off && stretches.iter().any(|&s| in_strip(p, s, half)) {
+            count += 1;
         }
-        y += step;
     }
     count as f64 * step * step
 }

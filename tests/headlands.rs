@@ -6,7 +6,7 @@
 
 mod common;
 
-use common::corpus::valid_fields;
+use common::corpus::{passes_driven, valid_fields};
 use furrow::geometry::point_segment_distance;
 use furrow::headland::passes::HeadlandPasses;
 use furrow::headland::{HeadlandMode, HeadlandOrder, PassAround};
@@ -619,15 +619,7 @@ fn headland_first_or_last_in_the_route() {
                 }
             }
         }
-        let mut passes_driven: Vec<usize> = p
-            .path
-            .segments
-            .iter()
-            .filter(|s| s.kind == SegmentKind::HeadlandPass)
-            .filter_map(|s| s.step)
-            .collect();
-        passes_driven.dedup();
-        assert_eq!(passes_driven.len(), p.headlands.passes.len());
+        assert_eq!(passes_driven(&p), p.headlands.passes.len());
         // Harvest opens the field edge first: the first pass is an outermost one.
         if order == HeadlandOrder::First {
             let first_pass =

@@ -191,6 +191,16 @@ impl Tally {
         })
     }
 
+    /// Forgets every line worked: the tally of the same field, empty again (the field's cells
+    /// are kept, not drawn again).
+    pub fn forget(&mut self) {
+        self.counts.fill(0);
+        self.last.fill(u32::MAX);
+        self.off_field.fill(false);
+        self.outside = 0;
+        self.lines = 0;
+    }
+
     /// Adds `worked` lines (each a polyline driven with the implement down).
     pub fn work(&mut self, worked: &[Vec<Coord>]) {
         let half = self.width / 2.0;
@@ -443,6 +453,23 @@ mod tests {
         );
         assert_eq!(c.uncovered.len(), 1);
         assert!(c.uncovered[0].reachable_m2 < c.uncovered[0].area_m2 - 150.0);
+    }
+
+    #[test]
+    fn a_forgotten_tally_counts_as_a_new_one() {
+        let field = polygon![(x: 0., y: 0.), (x: 12., y: 0.), (x: 12., y: 100.), (x: 0., y: 100.)];
+        let first = vec![vec![coord! { x: 11.0, y: 0.0 }, coord! { x: 11.0, y: 100.0 }]];
+        let second = vec![vec![coord! { x: 3.0, y: 0.0 }, coord! { x: 3.0, y: 60.0 }]];
+        let mut tally = Tally::new(&field, &[], 6.0).expect("a tally");
+        tally.work(&first);
+        tally.forget();
+        tally.work(&second);
+        let again = tally.coverage();
+        let fresh = measure(&field, &[], &second, 6.0);
+        assert_eq!(again.covered_area_m2, fresh.covered_area_m2);
+        assert_eq!(again.overlap_ratio, fresh.overlap_ratio);
+        assert_eq!(again.outside_area_m2, fresh.outside_area_m2);
+        assert!((fresh.covered_area_m2 - 360.0).abs() < 20.0, "{fresh:?}");
     }
 
     #[test]

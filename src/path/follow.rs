@@ -205,7 +205,8 @@ pub fn follow_in(
                 edges[m].length
             };
             let deflection = wrap(edges[m].heading - edges[a].heading).abs();
-            let mut best: Option<(f64, f64, Turn)> = None;
+            // (rank: 0 a bend, 1 a manoeuvre inside, 2 one outside; cost; into; the join)
+            let mut best: Option<(u8, f64, f64, Turn)> = None;
             for k in [0.0, 0.5, 1.0, 2.0, 3.0] {
                 let into = (k * v.turn_radius).min(room);
                 let at = edges[m].from + edges[m].dir * into;
@@ -214,22 +215,24 @@ pub fn follow_in(
                     Some(area) => v.turn(position, onto, area),
                     None => v.shortest(position, onto),
                 };
-                let cost = if is_bend(&turn, deflection) {
-                    turn.cost() - into - 1e9
+                let (rank, cost) = if is_bend(&turn, deflection) {
+                    (0, turn.cost() - into)
                 } else {
-                    turn.cost() + into
-                } + if turn.inside { 0.0 } else { 1e6 };
-                if best.as_ref().is_none_or(|b| cost < b.0 - 1e-9) {
-                    best = Some((cost, into, turn));
+                    (if turn.inside { 1 } else { 2 }, turn.cost() + into)
+                };
+                if best
+                    .as_ref()
+                    .is_none_or(|b| rank < b.0 || (rank == b.0 && cost < b.1 - 1e-9))
+                {
+                    best = Some((rank, cost, into, turn));
                 }
             }
             let first = out.len();
             let mut into = 0.0;
-            if let Some((_, at, turn)) = best {
+            if let Some((rank, _, at, turn)) = best {
                 into = at;
-                let bend = is_bend(&turn, deflection);
                 out.extend(turn.segments);
-                if !bend {
+                if rank > 0 {
                     manoeuvres.push(Manoeuvre {
                         pieces: first..out.len(),
                         form: turn.form,

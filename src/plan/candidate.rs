@@ -210,13 +210,9 @@ pub(super) fn fill_leftovers(
     let mut clock = Instant::now();
     // Counted again along the path as driven now: where the new route enters a headland pass
     // decides where its manoeuvres lift the implement.
-    let after = Tally::new(&prep.field.boundary, &obstacles, width).map_or_else(
-        Coverage::default,
-        |mut tally| {
-            tally.work(&worked_lines(&laid.swaths, &route, &path));
-            tally.coverage()
-        },
-    );
+    tally.forget();
+    tally.work(&worked_lines(&laid.swaths, &route, &path));
+    let after = tally.coverage();
     times.lap(&mut clock, |t| &mut t.metrics);
     let filled = Worked {
         method,

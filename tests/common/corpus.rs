@@ -96,3 +96,17 @@ pub fn real_parcels() -> Vec<(String, usize, String)> {
     }
     out
 }
+
+/// How many headland passes a plan's path drives (a pass with manoeuvres is several segments
+/// of one route step, with turns between).
+pub fn passes_driven(plan: &furrow::Plan) -> usize {
+    let mut steps: Vec<usize> = plan
+        .path
+        .segments
+        .iter()
+        .filter(|s| s.kind == furrow::path::SegmentKind::HeadlandPass)
+        .filter_map(|s| s.step)
+        .collect();
+    steps.dedup();
+    steps.len()
+}
