@@ -458,7 +458,10 @@ mod tests {
     #[test]
     fn a_forgotten_tally_counts_as_a_new_one() {
         let field = polygon![(x: 0., y: 0.), (x: 12., y: 0.), (x: 12., y: 100.), (x: 0., y: 100.)];
-        let first = vec![vec![coord! { x: 11.0, y: 0.0 }, coord! { x: 11.0, y: 100.0 }]];
+        let first = vec![vec![
+            coord! { x: 11.0, y: 0.0 },
+            coord! { x: 11.0, y: 100.0 },
+        ]];
         let second = vec![vec![coord! { x: 3.0, y: 0.0 }, coord! { x: 3.0, y: 60.0 }]];
         let mut tally = Tally::new(&field, &[], 6.0).expect("a tally");
         tally.work(&first);
