@@ -43,6 +43,7 @@ fn path_building(c: &mut Criterion) {
                         &plan.headlands.passes,
                         &vehicle,
                         Some(&area),
+                        plan.options.headland_corners,
                     )
                 })
             });

@@ -71,6 +71,7 @@ fn stages(c: &mut Criterion) {
                     &plan.headlands.passes,
                     &vehicle,
                     Some(&area),
+                    plan.options.headland_corners,
                 )
             })
         });
