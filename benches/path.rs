@@ -43,7 +43,6 @@ fn path_building(c: &mut Criterion) {
                         &plan.headlands.passes,
                         &vehicle,
                         Some(&area),
-                        plan.options.headland_corners,
                     )
                 })
             });

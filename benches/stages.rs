@@ -71,7 +71,6 @@ fn stages(c: &mut Criterion) {
                     &plan.headlands.passes,
                     &vehicle,
                     Some(&area),
-                    plan.options.headland_corners,
                 )
             })
         });

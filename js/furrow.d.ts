@@ -9,7 +9,6 @@ export type {
   FieldInput,
   HeadlandMode,
   HeadlandOrder,
-  HeadlandCorners,
   EdgePasses,
   DirectionMode,
   SearchMethod,

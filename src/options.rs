@@ -10,7 +10,6 @@ use crate::geometry::{forbids_every_direction, BearingRange};
 use crate::headland::passes::{passes_for_turns, HeadlandPasses};
 use crate::headland::{EdgePasses, HeadlandMode, HeadlandOrder};
 use crate::objective::{Machine, ObjectiveKind};
-use crate::path::corner::HeadlandCorners;
 use crate::route::pattern::SwathPattern;
 use crate::sort::SharedSort;
 use serde::{Deserialize, Serialize};
@@ -52,12 +51,6 @@ pub struct PlanOptions {
     /// Whether the headland passes are worked before the swaths (`first`, as in harvesting) or
     /// after them (`last`, as in seeding).
     pub headland_order: HeadlandOrder,
-    /// How the headland passes are driven at corners sharper than the machine turns: `round`
-    /// (passes opened by the turning circle, the crop outside the arc left standing),
-    /// `manoeuvre` (exact passes worked into every corner, with a manoeuvre onto the next
-    /// edge) or `auto` (per corner, whichever takes less time, counting the crop rounding
-    /// leaves).
-    pub headland_corners: HeadlandCorners,
     /// Obstacles narrower than this across the driving direction (metres) do not split the
     /// field: swaths run past them with the implement lifted (class A). `None` means one working
     /// width.
@@ -148,7 +141,6 @@ impl Default for PlanOptions {
             headland_tolerance_deg: 5.0,
             edge_passes: Vec::new(),
             headland_order: HeadlandOrder::Last,
-            headland_corners: HeadlandCorners::Auto,
             obstacle_threshold: None,
             turn_radius: 8.0,
             direction: None,
@@ -233,11 +225,6 @@ pub const OPTION_DOCS: &[(&str, &str, &str)] = &[
         "headlandOrder",
         "first|last",
         "work the headland passes before the swaths (harvest) or after them (seeding) (default last)",
-    ),
-    (
-        "headlandCorners",
-        "round|manoeuvre|auto",
-        "headland passes at corners sharper than the machine turns: rounded by the turning circle, worked into with a manoeuvre onto the next edge, or per corner whichever takes less time counting the crop rounding leaves (default auto)",
     ),
     (
         "obstacleThreshold",

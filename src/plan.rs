@@ -27,7 +27,6 @@ use crate::objective::Objective;
 use crate::obstacles::{classify, ClassSettings, ObstacleClasses};
 use crate::options::PlanOptions;
 use crate::output::budget::{coarsened, sample_spacing};
-use crate::path::corner::exact_stretch_pays;
 use crate::path::sample::{sample, Samples};
 use crate::path::turn::Area as DrivingArea;
 use crate::path::Path;
@@ -276,9 +275,7 @@ fn plan_with_passes(
     let mode = direction_mode(&field, options, &mut warnings)?;
     let direction = choose_direction(&field, options, mode, &search)?;
     times.lap(&mut clock, |t| &mut t.direction);
-    let area = driving_area(&field);
-    let (obstacles, headlands, all_around) =
-        lay_headlands(&field, options, direction.bearing, &area)?;
+    let (obstacles, headlands, all_around) = lay_headlands(&field, options, direction.bearing)?;
     let methods = auto::decompositions(options.decomposition, mode, all_around)?;
     times.lap(&mut clock, |t| &mut t.headlands);
     // The swaths at the field's direction, shared by the single-direction decompositions.
@@ -309,7 +306,7 @@ fn plan_with_passes(
         headlands,
         graph,
         single,
-        area,
+        area: driving_area(&field),
     };
     times.lap(&mut clock, |t| &mut t.path);
     let (methods, left_out) = auto::within_limits(methods, &prepared)?;
@@ -497,15 +494,8 @@ fn lay_headlands(
     field: &Field,
     options: &PlanOptions,
     bearing: f64,
-    area: &DrivingArea,
 ) -> Result<(ObstacleClasses, Headlands, bool), PlanError> {
     let width = options.width;
-    // A stretch of an exact pass is kept where the machine drives it without leaving the field
-    // (and, in `auto`, in less time than the rounding, counting the crop that leaves).
-    let vehicle = options.vehicle();
-    let drivable = |stretch: &[geo::Coord], shortcut: &[geo::Coord]| {
-        exact_stretch_pays(stretch, shortcut, &vehicle, area, options.headland_corners)
-    };
     let edge_passes = passes_per_edge(
         &field.boundary,
         &field.drawn_boundary,
@@ -535,7 +525,6 @@ fn lay_headlands(
             turn_radius: options.turn_radius,
             obstacle_passes: options.headland_pass_count(),
             edge_passes: &edge_passes,
-            drivable: options.headland_corners.exact().then_some(&drivable),
         },
     )
     .map_err(|e| e.at_feature(field.feature))?;

@@ -3,7 +3,6 @@
 //! stretch the plan's GeoJSON says is worked (swaths less their lifted stretches, headland
 //! passes), square to it and between its ends, or round one of its corners.
 
-use furrow::path::corner::HeadlandCorners;
 use furrow::{plan_geojson, Plan};
 use geo::{Contains, Coord, Distance, Point, Polygon};
 
@@ -355,80 +354,4 @@ fn an_arm_too_narrow_to_turn_in_is_worked_by_fill_passes_up_and_down_it() {
             "reverse {reverse}: {outside:.1} m² worked outside"
         );
     }
-}
-
-/// The reproducer of a headland pass driven through a pond: rounded at a 50 m turning radius,
-/// the pass round the field cut across the pond with the implement down (56 m of it). Neither
-/// rounded nor exact passes work anything in it or outside the field now.
-#[test]
-fn no_pass_works_through_an_obstacle_at_a_large_turning_radius() {
-    let path = common::corpus::fields_dir().join("reproducers/pass_through_obstacle_r50.geojson");
-    let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{e}"));
-    for corners in [HeadlandCorners::Round, HeadlandCorners::Auto] {
-        let options = furrow::PlanOptions {
-            headland_passes: 2.into(),
-            turn_radius: 50.0,
-            headland_corners: corners,
-            ..furrow::PlanOptions::default()
-        };
-        let plan = plan_geojson(&text, &options).unwrap_or_else(|e| panic!("{e}"));
-        let outside = worked_outside(&plan, 0.25);
-        assert!(
-            outside <= 1.0,
-            "{corners:?}: {outside:.1} m² worked outside or in the pond"
-        );
-    }
-}
-
-/// A kite 200 m long with corners of 30 degrees at its ends, in local metres.
-fn kite() -> String {
-    r#"{"type":"Polygon","coordinates":[[[0,0],[100,-27],[200,0],[100,27],[0,0]]]}"#.to_string()
-}
-
-#[test]
-fn sharp_corners_are_worked_into_with_manoeuvres() {
-    // A reversing drill: rounded at 8 m, each pass leaves the tips of the kite standing; worked
-    // into with a manoeuvre at each tip, they are worked, and nothing outside the field.
-    let options = |corners| furrow::PlanOptions {
-        width: 6.0,
-        headland_passes: 2.into(),
-        turn_radius: 8.0,
-        reverse: true,
-        headland_corners: corners,
-        coordinates: furrow::field::Coordinates::Metric,
-        ..furrow::PlanOptions::default()
-    };
-    let round =
-        plan_geojson(&kite(), &options(HeadlandCorners::Round)).unwrap_or_else(|e| panic!("{e}"));
-    let worked = plan_geojson(&kite(), &options(HeadlandCorners::Manoeuvre))
-        .unwrap_or_else(|e| panic!("{e}"));
-    let (before, after) = (
-        independent_coverage(&round, 0.25),
-        independent_coverage(&worked, 0.25),
-    );
-    assert!(
-        after > before + 0.02,
-        "{before:.4} rounded, {after:.4} worked into"
-    );
-    for plan in [&round, &worked] {
-        let outside = worked_outside(plan, 0.25);
-        assert!(outside <= 1.0, "{outside:.1} m² worked outside");
-        let c = &plan.summary.coverage;
-        let counted = independent_coverage(plan, 0.25);
-        assert!(
-            (c.coverage_ratio - counted).abs() <= 0.005,
-            "{c:?} against {counted:.4}"
-        );
-    }
-    // The tips are reached: the worked stretches come within 12 m of both ends (the pass's
-    // corner is 3 / tan 15° = 11.2 m from the field's).
-    let (stretches, _) = worked_stretches(&worked);
-    let xs = stretches.iter().flat_map(|&(a, b)| [a.x, b.x]);
-    let (low, high) = xs.fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), x| {
-        (l.min(x), h.max(x))
-    });
-    assert!(
-        low < 12.0 && high > 188.0,
-        "worked from {low:.1} to {high:.1} m"
-    );
 }

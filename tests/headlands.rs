@@ -11,7 +11,6 @@ use furrow::geometry::point_segment_distance;
 use furrow::headland::passes::HeadlandPasses;
 use furrow::headland::{HeadlandMode, HeadlandOrder, PassAround};
 use furrow::obstacles::ObstacleClass;
-use furrow::path::corner::HeadlandCorners;
 use furrow::path::SegmentKind;
 use furrow::route::pattern::SwathPattern;
 use furrow::{plan_geojson, Plan, PlanOptions};
@@ -133,10 +132,7 @@ fn check_headlands(plan: &Plan, name: &str) {
 
 /// `shape`: also check that passes leave the expected distance only on rounded corners and
 /// curve no tighter than they should (see the random-field test for when that is left out).
-/// Passes that follow the field exactly (`headlandCorners` other than `round`) keep its sharp
-/// corners where the machine drives them: their shape is checked by its distances alone.
 fn check_headlands_with(plan: &Plan, name: &str, shape: bool) {
-    let shape = shape && plan.options.headland_corners == HeadlandCorners::Round;
     let w = plan.options.width;
     let r = plan.options.turn_radius;
     let h = &plan.headlands;
@@ -648,7 +644,6 @@ fn a_sharp_corner_is_rounded_to_the_turning_radius_and_its_crop_reported() {
         headland_passes: 2.into(),
         turn_radius: r,
         coordinates: furrow::field::Coordinates::Metric,
-        headland_corners: HeadlandCorners::Round,
         ..PlanOptions::default()
     };
     let sharp = plan(text, &options(0.0), "triangle");
@@ -665,44 +660,6 @@ fn a_sharp_corner_is_rounded_to_the_turning_radius_and_its_crop_reported() {
 }
 
 #[test]
-fn exact_passes_keep_a_sharp_corner_the_machine_can_work_into() {
-    // The triangle with its 30 degree corner: a machine that may reverse works into it (a
-    // three-point or reversing turn there stays in the field), so its passes keep the corner.
-    let text = r#"{"type": "Polygon", "coordinates": [[[0, 0], [300, 0], [0, 173.2], [0, 0]]]}"#;
-    let options = |corners| PlanOptions {
-        width: 6.0,
-        headland_passes: 2.into(),
-        turn_radius: 15.0,
-        reverse: true,
-        coordinates: furrow::field::Coordinates::Metric,
-        headland_corners: corners,
-        ..PlanOptions::default()
-    };
-    let exact = plan(text, &options(HeadlandCorners::Manoeuvre), "triangle");
-    check_headlands(&exact, "triangle");
-    let round = plan(text, &options(HeadlandCorners::Round), "triangle");
-    // Pass 1 reaches into the 30 degree corner at (300, 0): its tip lies 3 m from both sides,
-    // 3 / tan(15°) = 11.2 m from the corner; rounded at 15 m it stays 45 m away.
-    let tip = |p: &Plan| {
-        p.headlands
-            .passes
-            .iter()
-            .filter(|q| q.index == 1)
-            .flat_map(|q| q.line.0.iter().map(|c| c.x))
-            .fold(f64::NEG_INFINITY, f64::max)
-    };
-    let reach = 300.0 - 3.0 / 15f64.to_radians().tan();
-    assert!((tip(&exact) - reach).abs() < 1e-3, "{}", tip(&exact));
-    assert!(tip(&round) < 260.0, "{}", tip(&round));
-    // The path works into it with a manoeuvre (the implement lifted) at the corner.
-    assert!(exact
-        .path
-        .segments
-        .iter()
-        .any(|s| s.kind == SegmentKind::Turn && s.line.0.iter().any(|c| c.x > 285.0)));
-}
-
-#[test]
 fn a_narrow_neck_splits_passes_and_passes_that_find_no_room_vanish() {
     // Two 100 m squares joined by a 20 m neck, 6 m passes with an 8 m turning radius: pass 1
     // (3 m in) has 14 m of neck, too narrow to turn round in (16 m), so it splits in two.
@@ -713,42 +670,22 @@ fn a_narrow_neck_splits_passes_and_passes_that_find_no_room_vanish() {
         headland_passes: 2.into(),
         turn_radius: 8.0,
         coordinates: furrow::field::Coordinates::Metric,
-        headland_corners: HeadlandCorners::Round,
         ..PlanOptions::default()
     };
     let p = plan(text, &options, "dumbbell");
     check_headlands(&p, "dumbbell");
-    // (Fill passes along what the passes leave in the neck aside.)
-    let passes = |p: &Plan, k: usize| {
-        p.headlands
-            .passes
-            .iter()
-            .filter(|q| q.index == k && q.around != PassAround::Fill)
-            .count()
-    };
-    assert_eq!(passes(&p, 1), 2);
-    assert_eq!(passes(&p, 2), 2);
+    assert_eq!(
+        p.headlands.passes.iter().filter(|q| q.index == 1).count(),
+        2
+    );
+    assert_eq!(
+        p.headlands.passes.iter().filter(|q| q.index == 2).count(),
+        2
+    );
     assert_eq!(p.headlands.inner.0.len(), 2);
     // The neck is left uncovered by the passes, and reported.
     assert!(p.summary.uncovered_headland_area_m2 > 20.0 * 50.0 * 0.5);
     let _: &Polygon = &p.field.boundary;
-    // Passes that follow the field exactly run through the neck: it needs no turn.
-    let exact = plan(
-        text,
-        &PlanOptions {
-            headland_corners: HeadlandCorners::Auto,
-            ..options
-        },
-        "dumbbell",
-    );
-    check_headlands(&exact, "dumbbell");
-    assert_eq!(passes(&exact, 1), 1);
-    assert!(
-        exact.summary.uncovered_headland_area_m2 < p.summary.uncovered_headland_area_m2 - 500.0,
-        "{} against {}",
-        exact.summary.uncovered_headland_area_m2,
-        p.summary.uncovered_headland_area_m2
-    );
 }
 
 /// A star-shaped field (metric) with radii in metres, and square obstacles near its middle.

@@ -28,7 +28,6 @@ export const OPTION_INPUTS = [
   "bearing",
   "headlandMode",
   "headlandOrder",
-  "headlandCorners",
   "obstacleThreshold",
   "objective",
   "search",

@@ -22,7 +22,6 @@ export type HeadlandMode = "constant" | "needed";
  * in harvesting), or after them, finishing at the field edge (`"last"`, as in seeding).
  */
 export type HeadlandOrder = "first" | "last";
-export type HeadlandCorners = "round" | "manoeuvre" | "auto";
 
 /**
  * The number of headland passes along one edge of the boundary as drawn: edge `i` runs from
@@ -104,15 +103,6 @@ export interface PlanOptions {
    * (`"last"`, seeding). Default `"last"`.
    */
   headlandOrder?: HeadlandOrder;
-  /**
-   * How the headland passes are driven at corners sharper than the machine turns while
-   * working: `"round"` (passes opened by the turning circle, the crop outside each arc left
-   * standing), `"manoeuvre"` (exact passes worked into every corner, the machine lifting there
-   * for a manoeuvre onto the next edge) or `"auto"` (per corner, whichever takes less time,
-   * counting the crop rounding leaves). A manoeuvre that would leave the field is never chosen:
-   * there the pass is rounded. Default `"auto"`.
-   */
-  headlandCorners?: HeadlandCorners;
   /**
    * Obstacles narrower than this across the driving direction (metres) do not split the field:
    * swaths run past them with the implement lifted (class A). `null` or absent: one working
@@ -309,7 +299,7 @@ export interface PlanFeatureProperties {
   /** Drivable features: whether the implement works along it. */
   working?: boolean;
   /** A turn's form. */
-  form?: "u-turn" | "loop" | "three-point" | "reeds-shepp" | "cc-u-turn" | "cc-loop" | "on-the-spot" | "lifted" | "none";
+  form?: "u-turn" | "loop" | "three-point" | "reeds-shepp" | "cc-u-turn" | "cc-loop" | "on-the-spot" | "none";
   /** A turn's word, e.g. `"LSL"` or `"L+R-L+"`. */
   word?: string;
   /** `false` on a turn that leaves the field or crosses an obstacle (see the `turn_leaves_field` warning). */

@@ -24,7 +24,6 @@ pub mod complexity;
 pub mod edges;
 pub mod offset;
 pub mod passes;
-pub mod splice;
 
 pub use edges::{EdgePasses, HeadlandMode};
 
@@ -34,7 +33,7 @@ use crate::geometry::point_segment_distance;
 use crate::geometry::BooleanOps;
 use crate::geometry::PlanarHypot;
 use geo::{Area, Coord, Euclidean, Length, LineString, MultiPolygon, Polygon};
-use offset::{drop_slivers, inset, inset_fine, line_band, open, outset, outset_fine};
+use offset::{drop_slivers, inset, line_band, open, outset, outset_fine};
 use serde::{Deserialize, Serialize};
 
 /// When the headland passes are worked.
@@ -122,38 +121,17 @@ pub struct Headlands {
     pub uncovered_area_m2: f64,
 }
 
-/// Whether the machine is to drive a stretch of an exact pass (a polyline) rather than the
-/// shortcut the turning circle takes across it (another): see [`splice`].
-pub type Drivable<'a> = &'a dyn Fn(&[Coord], &[Coord]) -> bool;
-
 /// The settings of the headland stage.
-#[derive(Clone, Copy)]
+#[derive(Debug, Clone, Copy)]
 pub struct HeadlandSettings<'a> {
     /// Working width, metres: the width of a pass.
     pub width: f64,
-    /// Turning radius, metres: passes are opened by a disc of this radius (rounded to it at
-    /// convex corners, cut at necks too narrow to turn in), except as `drivable` says.
+    /// Turning radius, metres: passes are rounded to it at convex corners.
     pub turn_radius: f64,
     /// Passes around each obstacle that has a headland.
     pub obstacle_passes: u32,
     /// Passes along each edge of the boundary's outer ring (edge `i` from point `i`).
     pub edge_passes: &'a [u32],
-    /// Where given, passes are the exact offsets, their corners sharp and their arms kept,
-    /// and the opening's shortcut replaces a stretch only where this says the machine cannot
-    /// drive it ([`splice::splice`]).
-    pub drivable: Option<Drivable<'a>>,
-}
-
-impl std::fmt::Debug for HeadlandSettings<'_> {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("HeadlandSettings")
-            .field("width", &self.width)
-            .field("turn_radius", &self.turn_radius)
-            .field("obstacle_passes", &self.obstacle_passes)
-            .field("edge_passes", &self.edge_passes)
-            .field("drivable", &self.drivable.is_some())
-            .finish()
-    }
 }
 
 /// Cuts `passes` headland passes of `width` all around the field and its obstacles, with sharp
@@ -185,7 +163,6 @@ pub fn constant_width(field: &Field, width: f64, passes: u32) -> Result<Headland
             turn_radius: 0.0,
             obstacle_passes: passes,
             edge_passes: &edges,
-            drivable: None,
         },
     )
     .map_err(|e| e.at_feature(field.feature))
@@ -201,9 +178,7 @@ pub fn constant_width(field: &Field, width: f64, passes: u32) -> Result<Headland
 ///
 /// // A 200 x 100 m field with headland along its short (east and west) edges only.
 /// let field = polygon![(x: 0., y: 0.), (x: 200., y: 0.), (x: 200., y: 100.), (x: 0., y: 100.)];
-/// let settings = HeadlandSettings {
-///     width: 6.0, turn_radius: 8.0, obstacle_passes: 2, edge_passes: &[0, 2, 0, 2], drivable: None,
-/// };
+/// let settings = HeadlandSettings { width: 6.0, turn_radius: 8.0, obstacle_passes: 2, edge_passes: &[0, 2, 0, 2] };
 /// let h = build(&field, &[], &settings)?;
 /// assert!((h.inner.unsigned_area() - 176.0 * 100.0).abs() < 1e-6);
 /// assert_eq!(h.passes.len(), 4); // two open passes at each end
@@ -236,18 +211,8 @@ pub fn build(
         .max()
         .unwrap_or(0);
 
-    let mut passes: Vec<HeadlandPass> = Vec::new();
+    let mut passes = Vec::new();
     for k in 1..=most {
-        // A stretch kept exact must not cross the pass outside it where that one is rounded.
-        let outside = splice::Outside::new(
-            passes
-                .iter()
-                .filter(|p| p.index + 1 == k as usize)
-                .map(|p| &p.line),
-        );
-        let within = |stretch: &[Coord], shortcut: &[Coord]| {
-            settings.drivable.is_some_and(|f| f(stretch, shortcut)) && !outside.crosses(stretch)
-        };
         let d = (k as f64 - 0.5) * w;
         let constraints = if uniform {
             Vec::new()
@@ -260,50 +225,48 @@ pub fn build(
                 }
             })
         };
-        let r = settings.turn_radius;
-        let (drivable, opened) = match settings.drivable {
-            Some(_) if r > 0.0 => {
-                let exact = if uniform {
-                    inset_fine(&region, d)
-                } else {
-                    keep_clear(&region, &constraints)
-                };
-                let opened = if uniform {
-                    // The opening of the inset by d is the outset of the inset by d + r.
-                    outset(&inset(&region, d + r), r)
-                } else {
-                    open(&exact, r)
-                };
-                (exact, Some(opened))
-            }
-            _ if uniform => (outset(&inset(&region, d + r), r), None),
-            _ => (open(&keep_clear(&region, &constraints), r), None),
+        let drivable = if uniform {
+            // The opening of the inset by d is the outset of the inset by d + r.
+            outset(
+                &inset(&region, d + settings.turn_radius),
+                settings.turn_radius,
+            )
+        } else {
+            open(&keep_clear(&region, &constraints), settings.turn_radius)
         };
-        let rings: Vec<(LineString, PassAround)> = drivable
-            .0
-            .iter()
-            .flat_map(|polygon| {
-                std::iter::once((polygon.exterior().clone(), PassAround::Field)).chain(
-                    polygon
-                        .interiors()
-                        .iter()
-                        .map(|r| (r.clone(), PassAround::Obstacle)),
-                )
-            })
-            .collect();
-        let rings = match &opened {
-            Some(opened) => {
-                let opened: Vec<&LineString> = opened
-                    .0
+        for polygon in &drivable.0 {
+            let rings = std::iter::once((polygon.exterior(), PassAround::Field)).chain(
+                polygon
+                    .interiors()
                     .iter()
-                    .flat_map(|p| std::iter::once(p.exterior()).chain(p.interiors()))
-                    .collect();
-                splice::splice_all(&rings, &opened, &within)
+                    .map(|r| (r, PassAround::Obstacle)),
+            );
+            for (r, around) in rings {
+                // Slivers that boolean operations leave are not passes.
+                let r = without_crumbs(r);
+                if r.0.len() < 4
+                    || Polygon::new(r.clone(), vec![]).unsigned_area() < offset::MIN_PART_AREA_M2
+                {
+                    continue;
+                }
+                if uniform {
+                    passes.push(HeadlandPass {
+                        index: k as usize,
+                        line: r,
+                        closed: true,
+                        around,
+                    });
+                } else {
+                    for (line, closed) in pass_lines(&r, &constraints, w / 2.0) {
+                        passes.push(HeadlandPass {
+                            index: k as usize,
+                            line,
+                            closed,
+                            around,
+                        });
+                    }
+                }
             }
-            None => rings,
-        };
-        for (r, around) in &rings {
-            add_passes(&mut passes, r, (k as usize, *around), &constraints, w);
         }
     }
 
@@ -338,40 +301,6 @@ pub fn build(
         area_m2,
         uncovered_area_m2,
     })
-}
-
-/// Adds the passes (number `at.0`, running around `at.1`) along `ring`: the ring, closed, where
-/// no `constraints` differ (all edges have the pass), else its pieces along the edges that have
-/// it. Slivers that boolean operations leave are not passes.
-fn add_passes(
-    passes: &mut Vec<HeadlandPass>,
-    ring: &LineString,
-    at: (usize, PassAround),
-    constraints: &[Constraint],
-    w: f64,
-) {
-    let r = without_crumbs(ring);
-    if r.0.len() < 4 || Polygon::new(r.clone(), vec![]).unsigned_area() < offset::MIN_PART_AREA_M2 {
-        return;
-    }
-    let (index, around) = at;
-    if constraints.is_empty() {
-        passes.push(HeadlandPass {
-            index,
-            line: r,
-            closed: true,
-            around,
-        });
-        return;
-    }
-    for (line, closed) in pass_lines(&r, constraints, w / 2.0) {
-        passes.push(HeadlandPass {
-            index,
-            line,
-            closed,
-            around,
-        });
-    }
 }
 
 /// Points closer together than this (metres) are one point of a pass.

@@ -42,17 +42,6 @@ pub fn inset(region: &MultiPolygon, distance: f64) -> MultiPolygon {
     drop_slivers(buffer_region(region, -distance, round_step(distance)))
 }
 
-/// [`inset`] with its arcs held to a fifth of [`ARC_TOLERANCE_M`]: an exact headland pass, run
-/// along as it is (not opened again), whose chords must not come nearer the field's edge than
-/// the pass is meant to be.
-pub fn inset_fine(region: &MultiPolygon, distance: f64) -> MultiPolygon {
-    if distance <= 0.0 {
-        return region.clone();
-    }
-    let step = step_within(distance, ARC_TOLERANCE_M / 5.0);
-    drop_slivers(buffer_region(region, -distance, step))
-}
-
 /// [`inset`] with round joins held only to `tolerance` metres: fewer points, for an estimate
 /// (the direction search measures many directions on one coarse inset).
 pub fn inset_coarse(region: &MultiPolygon, distance: f64, tolerance: f64) -> MultiPolygon {

@@ -31,7 +31,6 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
-use super::corner::{reach_into_corner, rounding_crop_m2, HeadlandCorners, NEGLIGIBLE_CROP_SHARE};
 use super::curve::{wrap, Gear, Pose, Segment};
 use super::turn::{Area, Turn, TurnForm, Vehicle};
 use crate::geometry::PlanarHypot;
@@ -60,18 +59,13 @@ pub struct Manoeuvre {
 /// the first point facing along the first edge and ends at the last point facing along the last
 /// edge. Empty for fewer than two distinct points.
 pub fn follow(points: &[Coord], v: &Vehicle) -> Vec<Segment> {
-    follow_in(points, v, None, HeadlandCorners::Round).0
+    follow_in(points, v, None).0
 }
 
 /// [`follow`], with the manoeuvres at corners too sharp to round: each the cheapest that stays in
-/// `area` where one does (else the cheapest, `inside: false`), reported in driving order. With
-/// `corners` other than `round`, a corner of a single vertex that could be rounded is worked
-/// into instead where [`HeadlandCorners`] says so ([`super::corner`]), and at every manoeuvre
-/// between two edges the implement works on into the corner and starts again from it as far as
-/// it stays between the edges' field sides ([`reach_into_corner`]).
+/// `area` where one does (else the cheapest, `inside: false`), reported in driving order.
 ///
 /// ```
-/// use furrow::path::corner::HeadlandCorners;
 /// use furrow::path::follow::follow_in;
 /// use furrow::path::turn::{Area, Vehicle};
 /// use geo::{coord, polygon};
@@ -81,7 +75,7 @@ pub fn follow(points: &[Coord], v: &Vehicle) -> Vec<Segment> {
 /// let strip = polygon![(x: -10., y: -6.), (x: 100., y: -6.), (x: 100., y: 6.), (x: -10., y: 6.)];
 /// let line = [coord! { x: 0., y: -3. }, coord! { x: 90., y: -3. }, coord! { x: 90., y: 3. },
 ///     coord! { x: 0., y: 3. }];
-/// let (path, manoeuvres) = follow_in(&line, &v, Some(&Area::new(&strip, &[])), HeadlandCorners::Round);
+/// let (path, manoeuvres) = follow_in(&line, &v, Some(&Area::new(&strip, &[])));
 /// assert_eq!(manoeuvres.len(), 1);
 /// assert!(manoeuvres[0].inside);
 /// assert!(path[manoeuvres[0].pieces.clone()].iter().any(|s| s.gear == furrow::path::curve::Gear::Reverse));
@@ -90,7 +84,6 @@ pub fn follow_in(
     points: &[Coord],
     v: &Vehicle,
     area: Option<&Area>,
-    corners: HeadlandCorners,
 ) -> (Vec<Segment>, Vec<Manoeuvre>) {
     let mut pts: Vec<Coord> = Vec::with_capacity(points.len());
     for &p in points {
@@ -101,13 +94,6 @@ pub fn follow_in(
             .last()
             .is_none_or(|q: &Coord| (p.x - q.x).planar_hypot(p.y - q.y) > SAME_POINT_M)
         {
-            // A point on the straight line on from the two before (where a ring was entered)
-            // is no corner: the edge runs on through it.
-            if let [.., a, b] = pts[..] {
-                if runs_on(a, b, p) {
-                    pts.pop();
-                }
-            }
             pts.push(p);
         }
     }
@@ -168,47 +154,9 @@ pub fn follow_in(
                 0.0
             };
             let fits_after = t + tangent <= edges[k].length - next + 1e-9;
-            if fits_before && fits_after && k == j && corners.exact() {
-                let corner = CornerAt {
-                    before: &edges[a],
-                    after: &edges[k],
-                    deflection,
-                    tangent,
-                };
-                if let Some((turn, (on, back))) =
-                    worked_into(&corner, (position, a_from), v, area, corners)
-                {
-                    push_line(&mut out, &mut position, edges[a].length + on - a_from);
-                    let first = out.len();
-                    out.extend(turn.segments);
-                    manoeuvres.push(Manoeuvre {
-                        pieces: first..out.len(),
-                        form: turn.form,
-                        inside: turn.inside,
-                    });
-                    if let Some(last) = out.last() {
-                        position = last.end();
-                    }
-                    position.heading = edges[k].heading;
-                    a = k;
-                    a_from = -back;
-                    j = k + 1;
-                    placed = true;
-                    break;
-                }
-            }
             if fits_before && fits_after {
                 push_line(&mut out, &mut position, s - tangent - a_from);
-                let fillet = v.fillet(position, deflection);
-                if !clear_for_work(&fillet, v, area) {
-                    // Worked, the implement would reach out of the field: lifted over it.
-                    manoeuvres.push(Manoeuvre {
-                        pieces: out.len()..out.len() + fillet.len(),
-                        form: TurnForm::Lifted,
-                        inside: true,
-                    });
-                }
-                for f in fillet {
+                for f in v.fillet(position, deflection) {
                     position = f.end();
                     out.push(f);
                 }
@@ -233,21 +181,10 @@ pub fn follow_in(
                 // most a few turning radii short, rather than looping to reach its very end.
                 break;
             }
-            // A corner too sharp to round from here: drive to the end of this edge (and on into
-            // the corner, passes of exact offsets) and turn onto the first edge ahead long
-            // enough to settle on (short edges in between, the chords of an arc tighter than
-            // the machine turns, are cut), a little way along it or from its corner.
-            let on = match area {
-                // A dead end (edges cut between): on towards its end, as far as the bar goes.
-                Some(area) if corners.exact() && dead_end(&edges, j, v.turn_radius) => {
-                    clear_of(&edges[a], edges[a].length, v.width, area, v.width / 2.0)
-                }
-                _ if corners.exact() => {
-                    let deflection = wrap(edges[j].heading - edges[a].heading);
-                    reach_checked(&edges[a], edges[a].length, deflection, v.width, area)
-                }
-                _ => 0.0,
-            };
+            // A corner too sharp to round from here: drive to the end of this edge and turn
+            // onto the first edge ahead long enough to settle on (short edges in between, the
+            // chords of an arc tighter than the machine turns, are cut), a little way along it.
+            push_line(&mut out, &mut position, edges[a].length - a_from);
             let mut m = j;
             let mut skipped = 0.0;
             while m + 1 < edges.len()
@@ -257,42 +194,39 @@ pub fn follow_in(
                 skipped += edges[m].length;
                 m += 1;
             }
-            let back = match area {
-                Some(area) if corners.exact() && m > j => {
-                    clear_of(&edges[m], 0.0, v.width, area, v.width / 2.0)
-                }
-                _ if corners.exact() => {
-                    let deflection = wrap(edges[m].heading - edges[m - 1].heading);
-                    reach_checked(&edges[m], 0.0, deflection, v.width, area)
-                }
-                _ => 0.0,
+            // Where along it: a bend the machine drives forward with the implement down where
+            // one joins (a jog of the line: the join that drives least, the stretch it replaces
+            // counted off), else a manoeuvre with the implement lifted (the one inside the area,
+            // where one is, that costs least, the stretch it skips counted as driven again: its
+            // crop is left standing).
+            let room = if m + 1 < edges.len() {
+                edges[m].length / 2.0
+            } else {
+                edges[m].length
             };
-            let (on, best) = join_onto(&edges, (a, position, a_from), m, (on, back), v, area);
-            if best.as_ref().is_some_and(|b| b.0 == 2) {
-                // No manoeuvre stays in: the corner is cut by a bend inside, where one joins.
-                if let Some(cut) =
-                    area.and_then(|area| cut_corner(&edges, (a, position, a_from), m, v, area))
+            let deflection = wrap(edges[m].heading - edges[a].heading).abs();
+            // (rank: 0 a bend, 1 a manoeuvre inside, 2 one outside; cost; into; the join)
+            let mut best: Option<(u8, f64, f64, Turn)> = None;
+            for k in [0.0, 0.5, 1.0, 2.0, 3.0] {
+                let into = (k * v.turn_radius).min(room);
+                let at = edges[m].from + edges[m].dir * into;
+                let onto = Pose::new(at.x, at.y, edges[m].heading);
+                let turn = match area {
+                    Some(area) => v.turn(position, onto, area),
+                    None => v.shortest(position, onto),
+                };
+                let (rank, cost) = if is_bend(&turn, deflection) {
+                    (0, turn.cost() - into)
+                } else {
+                    (if turn.inside { 1 } else { 2 }, turn.cost() + into)
+                };
+                if best
+                    .as_ref()
+                    .is_none_or(|b| rank < b.0 || (rank == b.0 && cost < b.1 - 1e-9))
                 {
-                    push_line(&mut out, &mut position, cut.from - a_from);
-                    if cut.lifted {
-                        manoeuvres.push(Manoeuvre {
-                            pieces: out.len()..out.len() + cut.turn.segments.len(),
-                            form: TurnForm::Lifted,
-                            inside: true,
-                        });
-                    }
-                    out.extend(cut.turn.segments);
-                    if let Some(last) = out.last() {
-                        position = last.end();
-                    }
-                    position.heading = edges[cut.onto].heading;
-                    a = cut.onto;
-                    a_from = cut.into;
-                    j = cut.onto + 1;
-                    continue;
+                    best = Some((rank, cost, into, turn));
                 }
             }
-            push_line(&mut out, &mut position, edges[a].length + on - a_from);
             let first = out.len();
             let mut into = 0.0;
             if let Some((rank, _, at, turn)) = best {
@@ -352,7 +286,7 @@ pub fn follow_in(
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn follow_round(ring: &[Coord], v: &Vehicle) -> Vec<Segment> {
-    follow_round_in(ring, v, None, HeadlandCorners::Round).0
+    follow_round_in(ring, v, None).0
 }
 
 /// [`follow_round`], with its manoeuvres chosen and reported as [`follow_in`] does.
@@ -360,7 +294,6 @@ pub fn follow_round_in(
     ring: &[Coord],
     v: &Vehicle,
     area: Option<&Area>,
-    corners: HeadlandCorners,
 ) -> (Vec<Segment>, Vec<Manoeuvre>) {
     let (Some(&first), Some(&last)) = (ring.first(), ring.last()) else {
         return (Vec::new(), Vec::new());
@@ -375,7 +308,7 @@ pub fn follow_round_in(
         return (Vec::new(), Vec::new());
     };
     if !closed {
-        return follow_in(ring, v, area, corners);
+        return follow_in(ring, v, area);
     }
     let edge = Edge::new(first, second);
     let ring_length: f64 = ring
@@ -393,7 +326,7 @@ pub fn follow_round_in(
         extended.push(w[1]);
         again += (w[1].x - w[0].x).planar_hypot(w[1].y - w[0].y);
     }
-    let (path, mut manoeuvres) = follow_in(&extended, v, area, corners);
+    let (path, mut manoeuvres) = follow_in(&extended, v, area);
     match back_on_first_edge(&path, &edge, ring_length / 2.0, v.turn_radius) {
         Some(cut) => {
             let path = cut_at(path, cut);
@@ -404,13 +337,12 @@ pub fn follow_round_in(
             });
             (path, manoeuvres)
         }
-        None => follow_in(ring, v, area, corners),
+        None => follow_in(ring, v, area),
     }
 }
 
 /// Distance along `path` (past `from`) where it is first on the line of `edge` (within a
-/// millimetre), heading along it, level with the edge's start or past it, on a straight piece
-/// (not within the last metres of a clothoid easing onto the line: the path ends straight).
+/// millimetre), heading along it, level with the edge's start or past it.
 fn back_on_first_edge(path: &[Segment], edge: &Edge, from: f64, radius: f64) -> Option<f64> {
     // At most about 100,000 samples, however long the ring and small the radius.
     let step = (radius / 20.0).clamp(0.01, 0.5).max(from / 50_000.0);
@@ -423,8 +355,7 @@ fn back_on_first_edge(path: &[Segment], edge: &Edge, from: f64, radius: f64) -> 
     };
     let mut done = 0.0;
     for seg in path {
-        let straight = seg.curvature == 0.0 && seg.sharpness == 0.0;
-        if straight && done + seg.length >= from {
+        if done + seg.length >= from {
             let poses = seg.poses();
             let mut s = (from - done).max(0.0);
             let mut before = s;
@@ -462,35 +393,6 @@ fn is_bend(turn: &Turn, deflection: f64) -> bool {
     if deflection > 0.75 * std::f64::consts::PI + 1e-9 {
         return false;
     }
-    turn.inside && forward_within(turn, deflection)
-}
-
-/// Whether `c` lies straight on from `a` through `b` (within a nanoradian).
-fn runs_on(a: Coord, b: Coord, c: Coord) -> bool {
-    let (u, w) = (b - a, c - b);
-    let cross = u.x * w.y - u.y * w.x;
-    let dot = u.x * w.x + u.y * w.y;
-    dot > 0.0 && cross.abs() <= 1e-9 * u.x.planar_hypot(u.y) * w.x.planar_hypot(w.y)
-}
-
-/// The pose `length` metres straight on from `pose`.
-fn straight_on(pose: Pose, length: f64) -> Pose {
-    Pose::new(
-        pose.x + length * pose.heading.cos(),
-        pose.y + length * pose.heading.sin(),
-        pose.heading,
-    )
-}
-
-/// Whether the implement working along `segments` stays in `area` (to a centimetre; true
-/// without an area).
-fn clear_for_work(segments: &[Segment], v: &Vehicle, area: Option<&Area>) -> bool {
-    area.is_none_or(|area| area.keeps_clear(segments, (v.width / 2.0 - 0.01).max(0.0)))
-}
-
-/// Whether a join drives forward throughout and turns in all (either way) at most a sixth of a
-/// turn more than `deflection`.
-fn forward_within(turn: &Turn, deflection: f64) -> bool {
     let mut turned = 0.0;
     for s in &turn.segments {
         if s.gear != Gear::Forward {
@@ -498,7 +400,7 @@ fn forward_within(turn: &Turn, deflection: f64) -> bool {
         }
         turned += (s.curvature.abs() + s.sharpness.abs() * s.length / 2.0) * s.length;
     }
-    turned <= deflection + std::f64::consts::FRAC_PI_3 + 1e-9
+    turn.inside && turned <= deflection + std::f64::consts::FRAC_PI_3 + 1e-9
 }
 
 /// `path` cut `at` metres from its start.
@@ -517,258 +419,6 @@ fn cut_at(path: Vec<Segment>, at: f64) -> Vec<Segment> {
         out.push(seg);
     }
     out
-}
-
-/// A join from the end of one edge onto another: (rank: 0 a bend, 1 a manoeuvre inside, 2 one
-/// outside; cost; how far along the edge it lands; the turn).
-type Join = (u8, f64, f64, Turn);
-
-/// The join from the end of edge `at.0` (where the machine is at `at.1`, `at.2` metres along
-/// it), worked on `reach.0` metres past it, onto edge `m`: a bend
-/// the machine drives forward with the implement down where one joins (a jog of the line: the
-/// join that drives least, the stretch it replaces counted off), else a manoeuvre with the
-/// implement lifted (the one inside the area, where one is, that costs least, the stretch of
-/// edge `m` it skips counted as driven again: its crop is left standing), landing `reach.1`
-/// before edge `m` or a little way along it. Where no join from past the end of edge `a` stays
-/// inside and one from its end does, that one: how far on it starts is returned with it.
-fn join_onto(
-    edges: &[Edge],
-    at: (usize, Pose, f64),
-    m: usize,
-    reach: (f64, f64),
-    v: &Vehicle,
-    area: Option<&Area>,
-) -> (f64, Option<Join>) {
-    let a = at.0;
-    let room = if m + 1 < edges.len() {
-        edges[m].length / 2.0
-    } else {
-        edges[m].length
-    };
-    let deflection = wrap(edges[m].heading - edges[a].heading).abs();
-    let mut first: Option<(f64, Option<Join>)> = None;
-    for on in [reach.0, 0.0] {
-        if first.is_some() && on == reach.0 {
-            break;
-        }
-        let from = straight_on(at.1, edges[a].length + on - at.2);
-        let mut best: Option<Join> = None;
-        for k in [-1.0, 0.0, 0.5, 1.0, 2.0, 3.0] {
-            let into = if k < 0.0 {
-                if reach.1 <= 0.0 {
-                    continue;
-                }
-                -reach.1
-            } else {
-                (k * v.turn_radius).min(room)
-            };
-            let at = edges[m].from + edges[m].dir * into;
-            let onto = Pose::new(at.x, at.y, edges[m].heading);
-            let turn = match area {
-                Some(area) => v.turn(from, onto, area),
-                None => v.shortest(from, onto),
-            };
-            let (rank, cost) =
-                if is_bend(&turn, deflection) && clear_for_work(&turn.segments, v, area) {
-                    (0, turn.cost() - into)
-                } else {
-                    (if turn.inside { 1 } else { 2 }, turn.cost() + into)
-                };
-            if best
-                .as_ref()
-                .is_none_or(|b| rank < b.0 || (rank == b.0 && cost < b.1 - 1e-9))
-            {
-                best = Some((rank, cost, into, turn));
-            }
-        }
-        if best.as_ref().is_some_and(|b| b.0 < 2) {
-            return (on, best);
-        }
-        first.get_or_insert((on, best));
-    }
-    first.unwrap_or((0.0, None))
-}
-
-/// A corner cut by a forward bend: from `from` metres along the edge it leaves onto edge `onto`,
-/// `into` metres along it, with the implement down unless working it would reach out of the
-/// field (`lifted`).
-struct Cut {
-    from: f64,
-    onto: usize,
-    into: f64,
-    lifted: bool,
-    turn: Turn,
-}
-
-/// A corner cut turns by less than a half turn by this much (radians): a cut never turns back.
-const CUT_NOT_BACK: f64 = 0.1;
-
-/// Edges beyond the first one a corner cut may land on.
-const CUT_EDGES_BEYOND: usize = 3;
-
-/// The least cut of the corner from edge `at.0` (where the machine is at `at.1`, `at.2` metres
-/// along it) to edge `m` or
-/// one of the few after it: a bend driven forward that stays in `area` with the implement,
-/// started a turning radius or more before the end of the edge (or where the machine is) and
-/// landing a half radius or more along the other (as the turning circle rounds a corner or
-/// cuts across an arm too narrow to turn in). Tried from the shortest cut out; `None` where
-/// none joins. One that would work out of the field is taken lifted, where no other joins.
-fn cut_corner(
-    edges: &[Edge],
-    at: (usize, Pose, f64),
-    m: usize,
-    v: &Vehicle,
-    area: &Area,
-) -> Option<Cut> {
-    let (a, _, a_from) = at;
-    let r = v.turn_radius.max(1e-3);
-    let mut lifted: Option<Cut> = None;
-    let last = (m + CUT_EDGES_BEYOND).min(edges.len() - 1);
-    for size in [1.0, 2.0, 3.0, 4.0, 6.0] {
-        let from = (edges[a].length - size * r).max(a_from);
-        let pose = straight_on(at.1, from - a_from);
-        let mut deflection = 0.0;
-        for e in (a + 1)..=last {
-            deflection += wrap(edges[e].heading - edges[e - 1].heading);
-            if e < m || deflection.abs() > std::f64::consts::PI - CUT_NOT_BACK {
-                continue;
-            }
-            for share in [0.5, 1.0, 1.5, 2.0, 3.0, 4.0] {
-                let into = (share * r).min(edges[e].length);
-                let land = edges[e].from + edges[e].dir * into;
-                let onto = Pose::new(land.x, land.y, edges[e].heading);
-                let turn = v.turn(pose, onto, area);
-                if turn.inside && forward_within(&turn, deflection.abs()) {
-                    let cut = Cut {
-                        from,
-                        onto: e,
-                        into,
-                        lifted: !clear_for_work(&turn.segments, v, Some(area)),
-                        turn,
-                    };
-                    if !cut.lifted {
-                        return Some(cut);
-                    }
-                    lifted.get_or_insert(cut);
-                }
-            }
-        }
-        if from <= a_from {
-            break;
-        }
-    }
-    lifted
-}
-
-/// Whether the line turns back within the short edges from edge `j` on (each shorter than
-/// `radius`, at most [`MAX_SKIPPED_RADII`] of them in all): the end of a strip or an arm.
-fn dead_end(edges: &[Edge], j: usize, radius: f64) -> bool {
-    let mut skipped = 0.0;
-    let mut turned = 0.0;
-    let mut k = j;
-    while k < edges.len() {
-        turned += wrap(edges[k].heading - edges[k - 1].heading);
-        if turned.abs() > 0.75 * std::f64::consts::PI {
-            return true;
-        }
-        if edges[k].length >= radius {
-            return false;
-        }
-        skipped += edges[k].length;
-        if skipped > MAX_SKIPPED_RADII * radius {
-            return false;
-        }
-        k += 1;
-    }
-    false
-}
-
-/// A corner between two edges of a followed line that the vehicle could round.
-struct CornerAt<'a> {
-    before: &'a Edge,
-    after: &'a Edge,
-    /// The turn from one edge to the other, radians (positive to the left).
-    deflection: f64,
-    /// How far before the corner (and after it) its rounding reaches, metres.
-    tangent: f64,
-}
-
-/// The manoeuvre that works `corner` in (the machine at `at.0`, `at.1` metres along the edge
-/// before it), with how far the implement works on past the corner
-/// and starts again before it on the next edge, where [`HeadlandCorners`] prefers it to
-/// rounding: in `manoeuvre` mode wherever rounding leaves crop and a manoeuvre stays in the
-/// area, in `auto` mode where it also takes less time than the rounding and the crop it leaves
-/// (as if worked at working speed). `None`: round it.
-fn worked_into(
-    corner: &CornerAt,
-    at: (Pose, f64),
-    v: &Vehicle,
-    area: Option<&Area>,
-    corners: HeadlandCorners,
-) -> Option<(Turn, (f64, f64))> {
-    if v.pivots() {
-        return None;
-    }
-    let d = corner.deflection.abs();
-    let radius = corner.tangent / (d / 2.0).tan();
-    let crop = rounding_crop_m2(radius, v.width, d);
-    if crop.is_nan() || crop <= NEGLIGIBLE_CROP_SHARE * v.width * v.width {
-        return None;
-    }
-    let (work, turn_speed) = (v.working_speed.max(1e-9), v.turning_speed.max(1e-9));
-    let round_s = radius * d / work + crop / (v.width * work);
-    // No manoeuvre turns by d in less than r·d; the implement works on to the corner and
-    // from it either side.
-    let driven = 2.0 * corner.tangent / work;
-    if corners == HeadlandCorners::Auto && round_s <= driven + v.turn_radius * d / turn_speed {
-        return None;
-    }
-    let before = corner.before;
-    let on = reach_checked(before, before.length, corner.deflection, v.width, area);
-    let back = reach_checked(corner.after, 0.0, corner.deflection, v.width, area);
-
-    let start = corner.after.from - corner.after.dir * back;
-    let from = straight_on(at.0, before.length + on - at.1);
-    let to = Pose::new(start.x, start.y, corner.after.heading);
-    let turn = match area {
-        Some(area) => v.turn(from, to, area),
-        None => v.shortest(from, to),
-    };
-    if !turn.inside {
-        return None;
-    }
-    let manoeuvre_s = driven + (on + back) / work + turn.cost() / turn_speed;
-    if corners == HeadlandCorners::Auto && manoeuvre_s >= round_s {
-        return None;
-    }
-    Some((turn, (on, back)))
-}
-
-/// How far past `at` metres along `edge` (its end, or its start looking back) the implement of
-/// `width` works on into the corner of `deflection` it makes with the edge beside: as far as
-/// [`reach_into_corner`] allows, and its bar stays in `area` (a centimetre short of its sides).
-fn reach_checked(edge: &Edge, at: f64, deflection: f64, width: f64, area: Option<&Area>) -> f64 {
-    let reach = reach_into_corner(width, deflection);
-    if reach < 1e-6 {
-        return 0.0;
-    }
-    match area {
-        Some(area) => clear_of(edge, at, width, area, reach),
-        None => reach,
-    }
-}
-
-/// How far (at most `max`) the implement of `width` can work on straight past `at` metres along
-/// `edge` (forwards from its end, backwards from its start) with its bar in `area`.
-fn clear_of(edge: &Edge, at: f64, width: f64, area: &Area, max: f64) -> f64 {
-    let corner = edge.from + edge.dir * at;
-    let heading = if at > 0.0 {
-        edge.heading
-    } else {
-        edge.heading + std::f64::consts::PI
-    };
-    let half = (width / 2.0 - 0.01).max(0.0);
-    area.clear_ahead(Pose::new(corner.x, corner.y, heading), half, max)
 }
 
 /// Drives `length` metres straight on from `position` (nothing if under a micrometre).
@@ -827,7 +477,7 @@ impl Edge {
 mod tests {
     use super::*;
     use crate::path::curve;
-    use geo::{coord, polygon};
+    use geo::coord;
     use std::f64::consts::PI;
 
     fn check_continuous(path: &[Segment], max_curvature: f64) {
@@ -913,7 +563,7 @@ mod tests {
             coord! { x: 51.0, y: 1.5 },
             coord! { x: 100.0, y: 1.5 },
         ];
-        let (path, manoeuvres) = follow_in(&jog, &v, None, HeadlandCorners::Round);
+        let (path, manoeuvres) = follow_in(&jog, &v, None);
         check_continuous(&path, 1.0 / 8.0);
         assert!(manoeuvres.is_empty(), "{manoeuvres:?}");
         assert!(path.iter().all(|s| s.gear == Gear::Forward));
@@ -925,7 +575,7 @@ mod tests {
             coord! { x: 60.0, y: 6.0 },
             coord! { x: 0.0, y: 6.0 },
         ];
-        let (path, manoeuvres) = follow_in(&dead_end, &v, None, HeadlandCorners::Round);
+        let (path, manoeuvres) = follow_in(&dead_end, &v, None);
         check_continuous(&path, 1.0 / 8.0);
         assert_eq!(manoeuvres.len(), 1);
         let m = &manoeuvres[0];
@@ -944,73 +594,6 @@ mod tests {
             .map(|s| s.curvature.abs() * s.length)
             .sum();
         assert!(turned > PI, "a loop turns more than half round: {turned}");
-    }
-
-    #[test]
-    fn a_corner_worked_into_runs_on_to_the_field_side_and_starts_again_from_it() {
-        // A square corner of a pass 3 m inside the field's sides (the lines y = 0, x = 100)
-        // with the field going on beyond them (an inner pass, say): the implement works on 3 m
-        // past the pass's corner, to the line x = 100, manoeuvres over ground beyond, and
-        // starts again 3 m before the corner, on the line y = 0.
-        let wide = polygon![(x: -50., y: -50.), (x: 150., y: -50.), (x: 150., y: 150.), (x: -50., y: 150.)];
-        let v = Vehicle {
-            width: 6.0,
-            turn_radius: 8.0,
-            reverse: true,
-            ..Vehicle::default()
-        };
-        let pass = [
-            coord! { x: 20.0, y: 3.0 },
-            coord! { x: 97.0, y: 3.0 },
-            coord! { x: 97.0, y: 80.0 },
-        ];
-        let area = Area::new(&wide, &[]);
-        let (path, manoeuvres) = follow_in(&pass, &v, Some(&area), HeadlandCorners::Manoeuvre);
-        check_continuous(&path, 1.0 / 8.0);
-        assert_eq!(manoeuvres.len(), 1);
-        let m = &manoeuvres[0];
-        assert!(m.inside);
-        let (into, out) = (path[m.pieces.start].start, path[m.pieces.end - 1].end());
-        assert!(
-            (into.x - 100.0).abs() < 1e-6 && (into.y - 3.0).abs() < 1e-6,
-            "{into:?}"
-        );
-        assert!((out.x - 97.0).abs() < 1e-6 && out.y.abs() < 1e-6, "{out:?}");
-        // In auto mode a square corner is rounded: the manoeuvre takes longer than the crop.
-        let (_, auto) = follow_in(&pass, &v, Some(&area), HeadlandCorners::Auto);
-        assert!(auto.is_empty());
-        // Where those sides are the field's (the outermost pass), no manoeuvre there stays in
-        // the field: the corner is rounded.
-        let square =
-            polygon![(x: 0., y: 0.), (x: 100., y: 0.), (x: 100., y: 100.), (x: 0., y: 100.)];
-        let inside = Area::new(&square, &[]);
-        let (rounded, none) = follow_in(&pass, &v, Some(&inside), HeadlandCorners::Manoeuvre);
-        assert!(none.is_empty());
-        assert!(rounded.iter().all(|s| s.start.x <= 97.0 + 1e-9));
-    }
-
-    #[test]
-    fn a_rounding_the_implement_would_work_out_of_the_field_is_lifted() {
-        // Round the inside of an L's concave corner at 8 m, a 6 m implement on a pass 3 m from
-        // it would reach 2 m over the corner's vertex: that bend is driven lifted.
-        let l = polygon![(x: 0., y: 0.), (x: 100., y: 0.), (x: 100., y: 100.), (x: 50., y: 100.),
-            (x: 50., y: 50.), (x: 0., y: 50.)];
-        let area = Area::new(&l, &[]);
-        let v = Vehicle {
-            width: 6.0,
-            turn_radius: 8.0,
-            ..Vehicle::default()
-        };
-        let pass = [
-            coord! { x: 10.0, y: 47.0 },
-            coord! { x: 53.0, y: 47.0 },
-            coord! { x: 53.0, y: 90.0 },
-        ];
-        let (path, manoeuvres) = follow_in(&pass, &v, Some(&area), HeadlandCorners::Auto);
-        check_continuous(&path, 1.0 / 8.0);
-        assert_eq!(manoeuvres.len(), 1);
-        assert_eq!(manoeuvres[0].form, TurnForm::Lifted);
-        assert!(manoeuvres[0].inside);
     }
 
     #[test]

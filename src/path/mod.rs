@@ -18,7 +18,6 @@
 //! [`sample`] gives the path as points at a set spacing, for drawing and guidance.
 
 pub mod continuous;
-pub mod corner;
 pub mod curve;
 pub mod dubins;
 pub mod follow;
@@ -33,7 +32,6 @@ use crate::geometry::PlanarHypot;
 use crate::headland::HeadlandPass;
 use crate::route::{nearest_on_ring, Route, RouteStep};
 use crate::swath::Swaths;
-use corner::HeadlandCorners;
 use curve::{Gear, Pose, Segment};
 use follow::{follow, follow_in, follow_round_in, Manoeuvre};
 use geo::{Coord, Euclidean, Length, LineString};
@@ -189,7 +187,6 @@ const DIRECT_CONNECTION_RADII: f64 = 6.0;
 ///
 /// ```
 /// use furrow::{decompose::cluster_swaths, path::{build_path, SegmentKind, turn::Vehicle}};
-/// use furrow::path::corner::HeadlandCorners;
 /// use furrow::{route::{plan_route, RouteSettings}, swath::generate};
 /// use geo::{polygon, MultiPolygon};
 ///
@@ -197,7 +194,7 @@ const DIRECT_CONNECTION_RADII: f64 = 6.0;
 /// let swaths = generate(&MultiPolygon::new(vec![field]), 0.0, 6.0, 6.0)?;
 /// let route = plan_route(&swaths, &cluster_swaths(&swaths), &[], &RouteSettings::default());
 /// let vehicle = Vehicle { width: 6.0, turn_radius: 3.0, ..Vehicle::default() };
-/// let path = build_path(&route, &swaths, &[], &vehicle, None, HeadlandCorners::Round);
+/// let path = build_path(&route, &swaths, &[], &vehicle, None);
 /// let turns: Vec<_> = path.segments.iter().filter(|s| s.kind == SegmentKind::Turn).collect();
 /// assert_eq!(turns.len(), 4); // five swaths, four turns between them
 /// // Swaths 6 m apart, a 3 m radius: each turn is a U of two quarter circles, πr long.
@@ -210,7 +207,6 @@ pub fn build_path(
     passes: &[HeadlandPass],
     vehicle: &Vehicle,
     area: Option<&Area>,
-    corners: HeadlandCorners,
 ) -> Path {
     // The worked segments first (a headland pass with manoeuvres is several, with the turns
     // between), each step with the connection the route found into it.
@@ -261,12 +257,12 @@ pub fn build_path(
                         .or(last_point);
                     let (_, entry) = nearest_on_ring(&p.line, at);
                     // All the way round, back to where it was entered.
-                    follow_round_in(&ring_starting_at(&p.line, entry).0, vehicle, area, corners)
+                    follow_round_in(&ring_starting_at(&p.line, entry).0, vehicle, area)
                 } else if reversed {
                     let line: Vec<Coord> = p.line.0.iter().rev().copied().collect();
-                    follow_in(&line, vehicle, area, corners)
+                    follow_in(&line, vehicle, area)
                 } else {
-                    follow_in(&p.line.0, vehicle, area, corners)
+                    follow_in(&p.line.0, vehicle, area)
                 };
                 (pass_segments(pieces, &manoeuvres, k), None)
             }
@@ -636,14 +632,7 @@ mod tests {
             &passes,
             &RouteSettings::default(),
         );
-        let path = build_path(
-            &route,
-            &swaths,
-            &passes,
-            &Vehicle::default(),
-            None,
-            HeadlandCorners::Round,
-        );
+        let path = build_path(&route, &swaths, &passes, &Vehicle::default(), None);
         for w in path.segments.windows(2) {
             let a = *w[0].line.0.last().unwrap();
             let b = w[1].line.0[0];

@@ -93,9 +93,6 @@ pub enum TurnForm {
     OnTheSpot,
     /// Nothing to turn: the poses meet.
     None,
-    /// A bend of a headland pass driven with the implement lifted: working on, it would reach
-    /// out of the field (a corner cut tighter than the pass, a rounding over a concave corner).
-    Lifted,
 }
 
 impl TurnForm {
@@ -111,7 +108,6 @@ impl TurnForm {
             TurnForm::ThreePoint => "three-point",
             TurnForm::OnTheSpot => "on-the-spot",
             TurnForm::None => "none",
-            TurnForm::Lifted => "lifted",
         }
     }
 
@@ -120,9 +116,7 @@ impl TurnForm {
         match self {
             TurnForm::Dubins(w) | TurnForm::ContinuousCurvature(w) => (*w).to_string(),
             TurnForm::ReedsShepp(w) => w.clone(),
-            TurnForm::ThreePoint | TurnForm::OnTheSpot | TurnForm::None | TurnForm::Lifted => {
-                String::new()
-            }
+            TurnForm::ThreePoint | TurnForm::OnTheSpot | TurnForm::None => String::new(),
         }
     }
 }
@@ -425,92 +419,6 @@ impl Area {
         Area {
             edges: RTree::bulk_load(edges),
         }
-    }
-
-    /// How far (at most `max` metres) a bar of `half_width` either side of `pose`, across its
-    /// heading, can move straight ahead before it touches an edge of the area: how far an
-    /// implement can work on. 0 where an edge already crosses the bar.
-    ///
-    /// ```
-    /// use furrow::path::curve::Pose;
-    /// use furrow::path::turn::Area;
-    /// use geo::polygon;
-    ///
-    /// let field = polygon![(x: 0., y: 0.), (x: 100., y: 0.), (x: 100., y: 20.), (x: 0., y: 20.)];
-    /// let area = Area::new(&field, &[]);
-    /// // A 6 m bar 3 m from the south side, 10 m before the east side.
-    /// let ahead = area.clear_ahead(Pose::new(90.0, 3.0, 0.0), 2.99, 50.0);
-    /// assert!((ahead - 10.0).abs() < 1e-9);
-    /// ```
-    pub fn clear_ahead(&self, pose: Pose, half_width: f64, max: f64) -> f64 {
-        let (c, s) = (pose.heading.cos(), pose.heading.sin());
-        let reach = max + half_width;
-        let envelope = AABB::from_corners(
-            [pose.x - reach, pose.y - reach],
-            [pose.x + reach, pose.y + reach],
-        );
-        let local = |p: Coord| {
-            let (dx, dy) = (p.x - pose.x, p.y - pose.y);
-            (dx * c + dy * s, -dx * s + dy * c)
-        };
-        let mut ahead = max.max(0.0);
-        for e in self.edges.locate_in_envelope_intersecting(&envelope) {
-            let (a, b) = (local(e.a), local(e.b));
-            // The part of the edge within the bar's band, |y| <= half_width.
-            let (mut t0, mut t1) = (0.0_f64, 1.0_f64);
-            let dy = b.1 - a.1;
-            if dy.abs() < 1e-12 {
-                if a.1.abs() > half_width {
-                    continue;
-                }
-            } else {
-                let (ta, tb) = ((-half_width - a.1) / dy, (half_width - a.1) / dy);
-                t0 = t0.max(ta.min(tb));
-                t1 = t1.min(ta.max(tb));
-                if t0 > t1 {
-                    continue;
-                }
-            }
-            let x0 = a.0 + t0 * (b.0 - a.0);
-            let x1 = a.0 + t1 * (b.0 - a.0);
-            let (low, high) = (x0.min(x1), x0.max(x1));
-            if high < 0.0 {
-                continue;
-            }
-            ahead = ahead.min(low.max(0.0));
-        }
-        ahead
-    }
-
-    /// Whether a run of segments keeps `margin` metres or more from every edge of the area (to
-    /// a centimetre): where an implement of twice that width working along it stays in. Sampled
-    /// at most a fifth of the margin (and half a metre) apart.
-    ///
-    /// ```
-    /// use furrow::path::curve::{Gear, Pose, Segment};
-    /// use furrow::path::turn::Area;
-    /// use geo::polygon;
-    ///
-    /// let field = polygon![(x: 0., y: 0.), (x: 100., y: 0.), (x: 100., y: 20.), (x: 0., y: 20.)];
-    /// let area = Area::new(&field, &[]);
-    /// let along = Segment::line(Pose::new(10.0, 3.0, 0.0), 50.0, Gear::Forward);
-    /// assert!(area.keeps_clear(&[along], 2.99));
-    /// assert!(!area.keeps_clear(&[along], 3.5));
-    /// ```
-    pub fn keeps_clear(&self, segments: &[Segment], margin: f64) -> bool {
-        let step = (margin / 5.0).clamp(0.01, 0.5);
-        let m2 = margin * margin;
-        segments.iter().all(|s| {
-            let n = ((s.length / step).ceil() as usize).clamp(1, 100_000);
-            let poses = s.poses();
-            (0..=n).all(|i| {
-                let p = poses.at(s.length * i as f64 / n as f64);
-                self.edges
-                    .locate_within_distance([p.x, p.y], m2)
-                    .next()
-                    .is_none()
-            })
-        })
     }
 
     /// Whether a run of segments that starts inside stays inside: none of its chords crosses

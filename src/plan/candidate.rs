@@ -253,7 +253,6 @@ fn route_and_path(
             &laid.headlands.passes,
             &prep.options.vehicle(),
             Some(&prep.area),
-            prep.options.headland_corners,
         )
     });
     let Some(path) = built.as_ref().or(earlier.map(|&(_, path)| path)) else {

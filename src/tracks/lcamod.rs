@@ -828,9 +828,8 @@ mod tests {
                             l.length,
                             e.length
                         );
-                        // (to a micrometre and the rounding of a sum of many short pieces)
                         assert!(
-                            (polyline_length(&l.points) - l.length).abs() < 1e-6 + 1e-9 * l.length,
+                            (polyline_length(&l.points) - l.length).abs() < 1e-6,
                             "{name} query {q}: the points are the path"
                         );
                         let (start, end) = (l.points[0], l.points[l.points.len() - 1]);
