@@ -355,3 +355,29 @@ fn an_arm_too_narrow_to_turn_in_is_worked_by_fill_passes_up_and_down_it() {
         );
     }
 }
+
+/// The reproducer of a headland pass driven through a pond: rounded at a 50 m turning radius,
+/// the pass round the field cut across the pond with the implement down (56 m of it). The
+/// rounding is driven lifted now: nothing is worked in the pond or outside the field.
+#[test]
+fn no_pass_works_through_an_obstacle_at_a_large_turning_radius() {
+    let path = common::corpus::fields_dir().join("reproducers/pass_through_obstacle_r50.geojson");
+    let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{e}"));
+    let options = furrow::PlanOptions {
+        headland_passes: 2.into(),
+        turn_radius: 50.0,
+        ..furrow::PlanOptions::default()
+    };
+    let plan = plan_geojson(&text, &options).unwrap_or_else(|e| panic!("{e}"));
+    let outside = worked_outside(&plan, 0.25);
+    assert!(
+        outside <= 1.0,
+        "{outside:.1} m² worked outside or in the pond"
+    );
+    let c = &plan.summary.coverage;
+    let counted = independent_coverage(&plan, 0.5);
+    assert!(
+        (c.coverage_ratio - counted).abs() <= 0.005,
+        "{c:?} against {counted:.4}"
+    );
+}

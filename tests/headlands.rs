@@ -674,14 +674,17 @@ fn a_narrow_neck_splits_passes_and_passes_that_find_no_room_vanish() {
     };
     let p = plan(text, &options, "dumbbell");
     check_headlands(&p, "dumbbell");
-    assert_eq!(
-        p.headlands.passes.iter().filter(|q| q.index == 1).count(),
-        2
-    );
-    assert_eq!(
-        p.headlands.passes.iter().filter(|q| q.index == 2).count(),
-        2
-    );
+    // (Fill passes along what the passes leave in the neck aside: the roundings at the neck's
+    // concave corners are driven lifted, and the fill works their crop.)
+    let passes = |k: usize| {
+        p.headlands
+            .passes
+            .iter()
+            .filter(|q| q.index == k && q.around != PassAround::Fill)
+            .count()
+    };
+    assert_eq!(passes(1), 2);
+    assert_eq!(passes(2), 2);
     assert_eq!(p.headlands.inner.0.len(), 2);
     // The neck is left uncovered by the passes, and reported.
     assert!(p.summary.uncovered_headland_area_m2 > 20.0 * 50.0 * 0.5);

@@ -299,7 +299,7 @@ export interface PlanFeatureProperties {
   /** Drivable features: whether the implement works along it. */
   working?: boolean;
   /** A turn's form. */
-  form?: "u-turn" | "loop" | "three-point" | "reeds-shepp" | "cc-u-turn" | "cc-loop" | "on-the-spot" | "none";
+  form?: "u-turn" | "loop" | "three-point" | "reeds-shepp" | "cc-u-turn" | "cc-loop" | "on-the-spot" | "lifted" | "none";
   /** A turn's word, e.g. `"LSL"` or `"L+R-L+"`. */
   word?: string;
   /** `false` on a turn that leaves the field or crosses an obstacle (see the `turn_leaves_field` warning). */

@@ -12,7 +12,9 @@
 //! manoeuvre instead: the vehicle's cheapest turn from the end of one edge to the start of the
 //! next (a loop, or a three-point turn where it may reverse). [`follow_in`] reports those
 //! manoeuvres, so that the path drives them as turns with the implement lifted, and chooses
-//! each to stay inside the field where one of the machine's turns does.
+//! each to stay inside the field where one of the machine's turns does. A rounding or bend that
+//! would put the implement out of the field (round a concave corner tighter than the turning
+//! radius) is reported too, as a manoeuvre of form `lifted`.
 //!
 //! ```
 //! use furrow::path::curve;
@@ -156,7 +158,16 @@ pub fn follow_in(
             let fits_after = t + tangent <= edges[k].length - next + 1e-9;
             if fits_before && fits_after {
                 push_line(&mut out, &mut position, s - tangent - a_from);
-                for f in v.fillet(position, deflection) {
+                let fillet = v.fillet(position, deflection);
+                if !clear_for_work(&fillet, v, area) {
+                    // Worked, the implement would reach out of the field: lifted over it.
+                    manoeuvres.push(Manoeuvre {
+                        pieces: out.len()..out.len() + fillet.len(),
+                        form: TurnForm::Lifted,
+                        inside: true,
+                    });
+                }
+                for f in fillet {
                     position = f.end();
                     out.push(f);
                 }
@@ -215,11 +226,12 @@ pub fn follow_in(
                     Some(area) => v.turn(position, onto, area),
                     None => v.shortest(position, onto),
                 };
-                let (rank, cost) = if is_bend(&turn, deflection) {
-                    (0, turn.cost() - into)
-                } else {
-                    (if turn.inside { 1 } else { 2 }, turn.cost() + into)
-                };
+                let (rank, cost) =
+                    if is_bend(&turn, deflection) && clear_for_work(&turn.segments, v, area) {
+                        (0, turn.cost() - into)
+                    } else {
+                        (if turn.inside { 1 } else { 2 }, turn.cost() + into)
+                    };
                 if best
                     .as_ref()
                     .is_none_or(|b| rank < b.0 || (rank == b.0 && cost < b.1 - 1e-9))
@@ -403,6 +415,12 @@ fn is_bend(turn: &Turn, deflection: f64) -> bool {
     turn.inside && turned <= deflection + std::f64::consts::FRAC_PI_3 + 1e-9
 }
 
+/// Whether the implement working along `segments` stays in `area` (to a centimetre; true
+/// without an area).
+fn clear_for_work(segments: &[Segment], v: &Vehicle, area: Option<&Area>) -> bool {
+    area.is_none_or(|area| area.keeps_clear(segments, (v.width / 2.0 - 0.01).max(0.0)))
+}
+
 /// `path` cut `at` metres from its start.
 fn cut_at(path: Vec<Segment>, at: f64) -> Vec<Segment> {
     let mut out = Vec::with_capacity(path.len());
@@ -477,7 +495,7 @@ impl Edge {
 mod tests {
     use super::*;
     use crate::path::curve;
-    use geo::coord;
+    use geo::{coord, polygon};
     use std::f64::consts::PI;
 
     fn check_continuous(path: &[Segment], max_curvature: f64) {
@@ -594,6 +612,40 @@ mod tests {
             .map(|s| s.curvature.abs() * s.length)
             .sum();
         assert!(turned > PI, "a loop turns more than half round: {turned}");
+    }
+
+    #[test]
+    fn a_rounding_the_implement_would_work_out_of_the_field_is_lifted() {
+        // Round the inside of an L's concave corner at 8 m, a 6 m implement on a pass 3 m from
+        // it would reach 2 m over the corner's vertex: that bend is driven lifted.
+        let l = polygon![(x: 0., y: 0.), (x: 100., y: 0.), (x: 100., y: 100.), (x: 50., y: 100.),
+            (x: 50., y: 50.), (x: 0., y: 50.)];
+        let area = Area::new(&l, &[]);
+        let v = Vehicle {
+            width: 6.0,
+            turn_radius: 8.0,
+            ..Vehicle::default()
+        };
+        let pass = [
+            coord! { x: 10.0, y: 47.0 },
+            coord! { x: 53.0, y: 47.0 },
+            coord! { x: 53.0, y: 90.0 },
+        ];
+        let (path, manoeuvres) = follow_in(&pass, &v, Some(&area));
+        check_continuous(&path, 1.0 / 8.0);
+        assert_eq!(manoeuvres.len(), 1);
+        assert_eq!(manoeuvres[0].form, TurnForm::Lifted);
+        assert!(manoeuvres[0].inside);
+        // A convex corner is rounded inwards, away from the field's sides: worked.
+        let square =
+            polygon![(x: 0., y: 0.), (x: 100., y: 0.), (x: 100., y: 100.), (x: 0., y: 100.)];
+        let pass = [
+            coord! { x: 20.0, y: 3.0 },
+            coord! { x: 97.0, y: 3.0 },
+            coord! { x: 97.0, y: 80.0 },
+        ];
+        let (_, none) = follow_in(&pass, &v, Some(&Area::new(&square, &[])));
+        assert!(none.is_empty(), "{none:?}");
     }
 
     #[test]

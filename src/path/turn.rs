@@ -93,6 +93,9 @@ pub enum TurnForm {
     OnTheSpot,
     /// Nothing to turn: the poses meet.
     None,
+    /// A bend of a headland pass driven with the implement lifted: working on, it would reach
+    /// out of the field (a rounding over a concave corner tighter than the turning radius).
+    Lifted,
 }
 
 impl TurnForm {
@@ -108,6 +111,7 @@ impl TurnForm {
             TurnForm::ThreePoint => "three-point",
             TurnForm::OnTheSpot => "on-the-spot",
             TurnForm::None => "none",
+            TurnForm::Lifted => "lifted",
         }
     }
 
@@ -116,7 +120,9 @@ impl TurnForm {
         match self {
             TurnForm::Dubins(w) | TurnForm::ContinuousCurvature(w) => (*w).to_string(),
             TurnForm::ReedsShepp(w) => w.clone(),
-            TurnForm::ThreePoint | TurnForm::OnTheSpot | TurnForm::None => String::new(),
+            TurnForm::ThreePoint | TurnForm::OnTheSpot | TurnForm::None | TurnForm::Lifted => {
+                String::new()
+            }
         }
     }
 }
@@ -419,6 +425,37 @@ impl Area {
         Area {
             edges: RTree::bulk_load(edges),
         }
+    }
+
+    /// Whether a run of segments keeps `margin` metres or more from every edge of the area (to
+    /// a centimetre): where an implement of twice that width working along it stays in. Sampled
+    /// at most a fifth of the margin (and half a metre) apart.
+    ///
+    /// ```
+    /// use furrow::path::curve::{Gear, Pose, Segment};
+    /// use furrow::path::turn::Area;
+    /// use geo::polygon;
+    ///
+    /// let field = polygon![(x: 0., y: 0.), (x: 100., y: 0.), (x: 100., y: 20.), (x: 0., y: 20.)];
+    /// let area = Area::new(&field, &[]);
+    /// let along = Segment::line(Pose::new(10.0, 3.0, 0.0), 50.0, Gear::Forward);
+    /// assert!(area.keeps_clear(&[along], 2.99));
+    /// assert!(!area.keeps_clear(&[along], 3.5));
+    /// ```
+    pub fn keeps_clear(&self, segments: &[Segment], margin: f64) -> bool {
+        let step = (margin / 5.0).clamp(0.01, 0.5);
+        let m2 = margin * margin;
+        segments.iter().all(|s| {
+            let n = ((s.length / step).ceil() as usize).clamp(1, 100_000);
+            let poses = s.poses();
+            (0..=n).all(|i| {
+                let p = poses.at(s.length * i as f64 / n as f64);
+                self.edges
+                    .locate_within_distance([p.x, p.y], m2)
+                    .next()
+                    .is_none()
+            })
+        })
     }
 
     /// Whether a run of segments that starts inside stays inside: none of its chords crosses
