@@ -444,16 +444,28 @@ impl Area {
     /// ```
     pub fn keeps_clear(&self, segments: &[Segment], margin: f64) -> bool {
         let step = (margin / 5.0).clamp(0.01, 0.5);
-        let m2 = margin * margin;
         segments.iter().all(|s| {
+            // The edges near the segment once (it stays within its length of its start), then
+            // each sample against those alone.
+            let reach = s.length.abs() + margin;
+            let near: Vec<Edge> = self
+                .edges
+                .locate_in_envelope_intersecting(&AABB::from_corners(
+                    [s.start.x - reach, s.start.y - reach],
+                    [s.start.x + reach, s.start.y + reach],
+                ))
+                .copied()
+                .collect();
+            if near.is_empty() {
+                return true;
+            }
             let n = ((s.length / step).ceil() as usize).clamp(1, 100_000);
             let poses = s.poses();
             (0..=n).all(|i| {
                 let p = poses.at(s.length * i as f64 / n as f64);
-                self.edges
-                    .locate_within_distance([p.x, p.y], m2)
-                    .next()
-                    .is_none()
+                let p = Coord { x: p.x, y: p.y };
+                near.iter()
+                    .all(|e| point_segment_distance(p, e.a, e.b) > margin)
             })
         })
     }
