@@ -17,6 +17,7 @@ use crate::geometry::{
 use crate::geometry::{PlanarHypot, PlanarSimplify};
 use crate::headland::edges::drawn_edge_count;
 use crate::headland::offset::inset_coarse;
+use crate::numbers::{Decimals, Shortest};
 use crate::objective::{measure, Machine, Objective, SwathStats};
 use crate::prohibited::{forbidding, split};
 use crate::sort::SharedSort;
@@ -346,8 +347,10 @@ pub fn choose_bearing(
                 Some(r) => Err(PlanError::new(
                     ErrorCode::BearingForbidden,
                     format!(
-                        "bearing {bearing_deg} lies in the forbidden range {} to {} degrees",
-                        r.from_deg, r.to_deg
+                        "bearing {} lies in the forbidden range {} to {} degrees",
+                        Shortest(bearing_deg),
+                        Shortest(r.from_deg),
+                        Shortest(r.to_deg)
                     ),
                 )),
             }
@@ -707,10 +710,10 @@ pub fn reference_direction(
         return Err(PlanError::new(
             ErrorCode::BearingForbidden,
             format!(
-                "the reference runs at {:.1} degrees, in the forbidden range {} to {} degrees",
-                driving.to_degrees().rem_euclid(360.0),
-                r.from_deg,
-                r.to_deg
+                "the reference runs at {} degrees, in the forbidden range {} to {} degrees",
+                Decimals(driving.to_degrees().rem_euclid(360.0), 1),
+                Shortest(r.from_deg),
+                Shortest(r.to_deg)
             ),
         ));
     }

@@ -48,6 +48,7 @@ pub mod fill;
 pub mod geometry;
 pub mod headland;
 pub mod metrics;
+pub mod numbers;
 pub mod objective;
 pub mod obstacles;
 pub mod options;

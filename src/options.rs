@@ -9,6 +9,7 @@ use crate::field::Coordinates;
 use crate::geometry::{forbids_every_direction, BearingRange};
 use crate::headland::passes::{passes_for_turns, HeadlandPasses};
 use crate::headland::{EdgePasses, HeadlandMode, HeadlandOrder};
+use crate::numbers::{Position, Shortest};
 use crate::objective::{Machine, ObjectiveKind};
 use crate::route::pattern::SwathPattern;
 use crate::sort::SharedSort;
@@ -179,7 +180,7 @@ fn place_wanted(name: &str, coordinates: Coordinates) -> String {
     let act = if name == "exit" { "leaves" } else { "enters" };
     format!(
         "the {position} where the machine {act} the field, within {} km of its boundary",
-        MAX_PLACE_DISTANCE_M / 1000.0
+        Shortest(MAX_PLACE_DISTANCE_M / 1000.0)
     )
 }
 
@@ -381,8 +382,12 @@ impl PlanOptions {
         if !(self.width.is_finite() && (MIN_WIDTH_M..=MAX_WIDTH_M).contains(&self.width)) {
             return out_of_range(
                 "width",
-                format!("{}", self.width),
-                &format!("between {MIN_WIDTH_M} and {MAX_WIDTH_M} metres"),
+                Shortest(self.width).to_string(),
+                &format!(
+                    "between {} and {} metres",
+                    Shortest(MIN_WIDTH_M),
+                    Shortest(MAX_WIDTH_M)
+                ),
             );
         }
         if let Some(n) = self
@@ -400,19 +405,23 @@ impl PlanOptions {
         {
             return out_of_range(
                 "turnRadius",
-                format!("{}", self.turn_radius),
-                &format!("between 0 and {MAX_TURN_RADIUS_M} metres"),
+                Shortest(self.turn_radius).to_string(),
+                &format!("between 0 and {} metres", Shortest(MAX_TURN_RADIUS_M)),
             );
         }
         if let Some(b) = self.bearing_deg {
             if !b.is_finite() {
-                return out_of_range("bearing", format!("{b}"), "a finite number of degrees");
+                return out_of_range(
+                    "bearing",
+                    Shortest(b).to_string(),
+                    "a finite number of degrees",
+                );
             }
         }
         if let Some(r) = self.forbidden_bearings_deg.iter().find(|r| !r.is_finite()) {
             return out_of_range(
                 "forbiddenBearings",
-                format!("[{}, {}]", r.from_deg, r.to_deg),
+                format!("[{}, {}]", Shortest(r.from_deg), Shortest(r.to_deg)),
                 "pairs of finite compass bearings",
             );
         }
@@ -427,7 +436,7 @@ impl PlanOptions {
         {
             return out_of_range(
                 "headlandTolerance",
-                format!("{}", self.headland_tolerance_deg),
+                Shortest(self.headland_tolerance_deg).to_string(),
                 "at least 0 and less than 90 degrees",
             );
         }
@@ -444,13 +453,17 @@ impl PlanOptions {
         }
         if let Some(t) = self.obstacle_threshold {
             if !(t.is_finite() && t >= 0.0) {
-                return out_of_range("obstacleThreshold", format!("{t}"), "0 or more metres");
+                return out_of_range(
+                    "obstacleThreshold",
+                    Shortest(t).to_string(),
+                    "0 or more metres",
+                );
             }
         }
         if !(self.search_step_deg.is_finite() && (0.01..=90.0).contains(&self.search_step_deg)) {
             return out_of_range(
                 "searchStep",
-                format!("{}", self.search_step_deg),
+                Shortest(self.search_step_deg).to_string(),
                 "between 0.01 and 90 degrees",
             );
         }
@@ -461,8 +474,12 @@ impl PlanOptions {
             if !(v.is_finite() && (MIN_SPEED_KMH..=MAX_SPEED_KMH).contains(&v)) {
                 return out_of_range(
                     name,
-                    format!("{v}"),
-                    &format!("between {MIN_SPEED_KMH} and {MAX_SPEED_KMH} km/h"),
+                    Shortest(v).to_string(),
+                    &format!(
+                        "between {} and {} km/h",
+                        Shortest(MIN_SPEED_KMH),
+                        Shortest(MAX_SPEED_KMH)
+                    ),
                 );
             }
         }
@@ -470,7 +487,7 @@ impl PlanOptions {
             if line.iter().flatten().any(|v| !v.is_finite()) {
                 return out_of_range(
                     "referenceLine",
-                    format!("{line:?}"),
+                    format!("[{}, {}]", Position(line[0]), Position(line[1])),
                     "two points of finite coordinates",
                 );
             }
@@ -485,7 +502,7 @@ impl PlanOptions {
             if !o.is_finite() {
                 return out_of_range(
                     "referenceOffset",
-                    format!("{o}"),
+                    Shortest(o).to_string(),
                     "a finite number of metres",
                 );
             }
@@ -499,15 +516,22 @@ impl PlanOptions {
         }
         if let Some(m) = self.min_swath_length {
             if !(m.is_finite() && m >= 0.0) {
-                return out_of_range("minSwathLength", format!("{m}"), "0 or more metres");
+                return out_of_range(
+                    "minSwathLength",
+                    Shortest(m).to_string(),
+                    "0 or more metres",
+                );
             }
         }
         if let Some(c) = self.curvature_rate {
             if !(c.is_finite() && c > 0.0 && c <= MAX_CURVATURE_RATE) {
                 return out_of_range(
                     "curvatureRate",
-                    format!("{c}"),
-                    &format!("more than 0 and at most {MAX_CURVATURE_RATE} per square metre"),
+                    Shortest(c).to_string(),
+                    &format!(
+                        "more than 0 and at most {} per square metre",
+                        Shortest(MAX_CURVATURE_RATE)
+                    ),
                 );
             }
         }
@@ -516,8 +540,12 @@ impl PlanOptions {
         {
             return out_of_range(
                 "sampleSpacing",
-                format!("{}", self.sample_spacing),
-                &format!("between {MIN_SAMPLE_SPACING_M} and {MAX_SAMPLE_SPACING_M} metres"),
+                Shortest(self.sample_spacing).to_string(),
+                &format!(
+                    "between {} and {} metres",
+                    Shortest(MIN_SAMPLE_SPACING_M),
+                    Shortest(MAX_SAMPLE_SPACING_M)
+                ),
             );
         }
         if !(1..=MAX_PATTERN_SWATHS).contains(&self.snake_skip) {
@@ -564,7 +592,8 @@ impl PlanOptions {
                 return Err(PlanError::new(
                     ErrorCode::OptionOutOfRange,
                     format!(
-                        "option `{name}` is {point:?}: {problem}; give {}",
+                        "option `{name}` is {}: {problem}; give {}",
+                        Position(point),
                         place_wanted(name, self.coordinates)
                     ),
                 ));
@@ -595,7 +624,8 @@ impl PlanOptions {
                 return Err(PlanError::new(
                     ErrorCode::OptionOutOfRange,
                     format!(
-                        "option `{name}` is {point:?}: {problem}; give {}",
+                        "option `{name}` is {}: {problem}; give {}",
+                        Position(point),
                         place_wanted(name, self.coordinates)
                     ),
                 ));

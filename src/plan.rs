@@ -23,6 +23,7 @@ use crate::headland::complexity::check_offsets;
 use crate::headland::edges::{passes_per_edge, EdgeRule};
 use crate::headland::{build, EdgePasses, HeadlandSettings, Headlands};
 use crate::metrics::{DecompositionReport, StageTimes, Summary};
+use crate::numbers::{Decimals, Shortest};
 use crate::objective::Objective;
 use crate::obstacles::{classify, ClassSettings, ObstacleClasses};
 use crate::options::PlanOptions;
@@ -172,7 +173,7 @@ pub(crate) fn plan_stages(
                 (Err(e), None) => Err(PlanError {
                     message: format!(
                         "the field has no room for a pass of {} m, with or without headland passes: it is narrower than the working width nearly everywhere; use a narrower width",
-                        options.width
+                        Shortest(options.width)
                     ),
                     ..e
                 }),
@@ -244,7 +245,7 @@ fn fewer_passes(field: &Field, options: &PlanOptions, warnings: &[Warning]) -> O
         format!(
             "{asked} headland pass{} of {} m leave no inner field for swaths: {} laid, the number that covers most",
             if asked == 1 { "" } else { "es" },
-            options.width,
+            Shortest(options.width),
             plan.options.headland_pass_count(),
         ),
     ));
@@ -401,7 +402,11 @@ fn direction_mode(
     warnings.push(Warning::new(
         WarningCode::DirectionNotSearched,
         format!(
-            "at {width} m the field has up to {lines:.0} swath lines over outlines of {vertices:.0} vertices, too many to search {evaluations:.0} directions quickly; the swaths run along the longest edge"
+            "at {} m the field has up to {} swath lines over outlines of {} vertices, too many to search {} directions quickly; the swaths run along the longest edge",
+            Shortest(width),
+            Decimals(lines, 0),
+            Decimals(vertices, 0),
+            Decimals(evaluations, 0)
         ),
     ));
     Ok(DirectionMode::LongestEdge)

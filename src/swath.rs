@@ -10,6 +10,7 @@
 
 use crate::error::{ErrorCode, PlanError};
 use crate::geometry::{Extremes, SweepFrame};
+use crate::numbers::{Decimals, Shortest};
 use crate::sort::SharedSort;
 use geo::{Coord, Line, MultiPolygon};
 
@@ -430,7 +431,9 @@ fn generate_lines(
             return Err(PlanError::new(
                 ErrorCode::FieldTooLarge,
                 format!(
-                    "at {width} m working width the field needs {lines:.0} swaths; the planner plans up to {MAX_SWATH_LINES}"
+                    "at {} m working width the field needs {} swaths; the planner plans up to {MAX_SWATH_LINES}",
+                    Shortest(width),
+                    Decimals(lines, 0)
                 ),
             ));
         }

@@ -15,6 +15,7 @@
 
 use super::validate::MAX_VERTICES;
 use crate::error::{ErrorCode, PlanError};
+use crate::numbers::Shortest;
 use serde::de::{self, DeserializeSeed, Deserializer, IgnoredAny, SeqAccess, Visitor};
 use serde::Deserialize;
 use serde_json::value::RawValue;
@@ -536,7 +537,7 @@ fn collect_feature(
     };
     let name = props.name.map(|n| match n {
         NameValue::Text(s) => s,
-        NameValue::Number(x) => format!("{x}"),
+        NameValue::Number(x) => Shortest(x).to_string(),
     });
     let forbidden = match props.forbidden_bearings_deg {
         Some(ranges) if ranges.total > MAX_FORBIDDEN_RANGES => {

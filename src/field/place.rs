@@ -7,6 +7,7 @@
 use super::validate::{MAX_ABS_LATITUDE_DEG, MAX_ABS_METRIC_M};
 use super::{Coordinates, Frame};
 use crate::geometry::distance::point_segment_distance;
+use crate::numbers::{Decimals, Shortest};
 use geo::{Contains, Coord, Polygon};
 
 /// The farthest an entrance or exit may lie from the field boundary, metres: a gate across a
@@ -38,15 +39,19 @@ pub fn range_problem([x, y]: [f64; 2], coordinates: Coordinates) -> Option<Strin
         return Some("its coordinates must be finite numbers".into());
     }
     match coordinates {
-        Coordinates::Wgs84 if !(-180.0..=180.0).contains(&x) => {
-            Some(format!("its longitude {x:?} is out of range -180..180"))
-        }
+        Coordinates::Wgs84 if !(-180.0..=180.0).contains(&x) => Some(format!(
+            "its longitude {} is out of range -180..180",
+            Shortest(x)
+        )),
         Coordinates::Wgs84 if y.abs() > MAX_ABS_LATITUDE_DEG => Some(format!(
-            "its latitude {y:?} is out of range -{MAX_ABS_LATITUDE_DEG}..{MAX_ABS_LATITUDE_DEG}"
+            "its latitude {} is out of range -{}..{}",
+            Shortest(y),
+            Shortest(MAX_ABS_LATITUDE_DEG),
+            Shortest(MAX_ABS_LATITUDE_DEG)
         )),
         Coordinates::Metric if x.abs().max(y.abs()) > MAX_ABS_METRIC_M => Some(format!(
             "it is more than {} km from the origin of the metric frame",
-            MAX_ABS_METRIC_M / 1000.0
+            Shortest(MAX_ABS_METRIC_M / 1000.0)
         )),
         _ => None,
     }
@@ -98,8 +103,8 @@ pub fn place_problem(
     let distance = distance_from_field_m(p, boundary, frame);
     (distance > MAX_PLACE_DISTANCE_M).then(|| {
         format!(
-            "it lies {:.1} km from the field boundary",
-            distance / 1000.0
+            "it lies {} km from the field boundary",
+            Decimals(distance / 1000.0, 1)
         )
     })
 }

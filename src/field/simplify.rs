@@ -14,6 +14,7 @@ use super::ring::{find_self_intersection, COLLINEAR_M};
 use super::Field;
 use crate::error::{Warning, WarningCode};
 use crate::geometry::{sleeve_ring, Sleeve};
+use crate::numbers::Decimals;
 use geo::{Area, Euclidean, Length, LineString, Polygon};
 
 /// The simplification's largest tolerance for a working width: a sixth of it, between 2 cm and
@@ -239,8 +240,10 @@ fn simplify_polygon(
     Some(Warning::new(
         WarningCode::OutlineSimplified,
         format!(
-            "{subject} was simplified from {before} to {after} points, within {tolerance:.2} m {way} the outline as given ({change:.1} m², {:.3} %, {more_or_less})",
-            100.0 * change / area_before.max(f64::MIN_POSITIVE)
+            "{subject} was simplified from {before} to {after} points, within {} m {way} the outline as given ({} m², {} %, {more_or_less})",
+            Decimals(tolerance, 2),
+            Decimals(change, 1),
+            Decimals(100.0 * change / area_before.max(f64::MIN_POSITIVE), 3)
         ),
     ))
 }

@@ -10,6 +10,7 @@ use super::{BearingRange, Coordinates, Field, Obstacle, ProhibitedRegion};
 use crate::error::{ErrorCode, PlanError, Warning, WarningCode};
 use crate::geometry::forbids_every_direction;
 use crate::geometry::{BooleanOps, PlanarHypot};
+use crate::numbers::{Decimals, Position, Shortest};
 use geo::{Area, BoundingRect, Contains, Coord, Intersects, LineString, MultiPolygon, Polygon};
 
 /// Inputs with more vertices than this (all rings together) are refused.
@@ -80,9 +81,9 @@ pub fn field_from_input(
             return Err(PlanError::new(
                 ErrorCode::FieldTooLarge,
                 format!(
-                    "the field is {:.1} km across; the planner plans fields up to {} km across",
-                    extent / 1000.0,
-                    MAX_FIELD_EXTENT_M / 1000.0
+                    "the field is {} km across; the planner plans fields up to {} km across",
+                    Decimals(extent / 1000.0, 1),
+                    Shortest(MAX_FIELD_EXTENT_M / 1000.0)
                 ),
             )
             .at_feature(boundary_in.feature));
@@ -93,8 +94,9 @@ pub fn field_from_input(
             return Err(PlanError::new(
                 ErrorCode::CoordinateOutOfRange,
                 format!(
-                    "the field's entrance (feature {i}) is {p:?}: {problem}; move it to where the machine enters the field, within {} km of its boundary",
-                    MAX_PLACE_DISTANCE_M / 1000.0
+                    "the field's entrance (feature {i}) is {}: {problem}; move it to where the machine enters the field, within {} km of its boundary",
+                    Position(p),
+                    Shortest(MAX_PLACE_DISTANCE_M / 1000.0)
                 ),
             )
             .at_feature(i)
@@ -290,15 +292,18 @@ fn check_coordinates(p: &InputPolygon, coordinates: Coordinates) -> Result<(), P
                 )));
             }
             let problem = match coordinates {
-                Coordinates::Wgs84 if !(-180.0..=180.0).contains(&x) => {
-                    Some(format!("longitude {x} is out of range -180..180"))
-                }
+                Coordinates::Wgs84 if !(-180.0..=180.0).contains(&x) => Some(format!(
+                    "longitude {} is out of range -180..180",
+                    Shortest(x)
+                )),
                 Coordinates::Wgs84 if y.abs() > 90.0 => {
-                    Some(format!("latitude {y} is out of range -90..90"))
+                    Some(format!("latitude {} is out of range -90..90", Shortest(y)))
                 }
                 Coordinates::Metric if x.abs().max(y.abs()) > MAX_ABS_METRIC_M => Some(format!(
-                    "({x}, {y}) is more than {} km from the origin of the metric frame",
-                    MAX_ABS_METRIC_M / 1000.0
+                    "({}, {}) is more than {} km from the origin of the metric frame",
+                    Shortest(x),
+                    Shortest(y),
+                    Shortest(MAX_ABS_METRIC_M / 1000.0)
                 )),
                 _ => None,
             };
@@ -313,8 +318,10 @@ fn check_coordinates(p: &InputPolygon, coordinates: Coordinates) -> Result<(), P
                 return Err(at(PlanError::new(
                     ErrorCode::CoordinateOutOfRange,
                     format!(
-                        "point {v} of {} is at latitude {y}, too near a pole to plan (the limit is {MAX_ABS_LATITUDE_DEG})",
-                        p.subject(r)
+                        "point {v} of {} is at latitude {}, too near a pole to plan (the limit is {})",
+                        p.subject(r),
+                        Shortest(y),
+                        Shortest(MAX_ABS_LATITUDE_DEG)
                     ),
                 ))
                 .at_coordinate([x, y]));
@@ -338,10 +345,10 @@ fn check_location(
     }
     let place = |lon: f64, lat: f64| {
         format!(
-            "{:.4}° {}, {:.4}° {}",
-            lat.abs(),
+            "{}° {}, {}° {}",
+            Decimals(lat.abs(), 4),
             if lat >= 0.0 { 'N' } else { 'S' },
-            lon.abs(),
+            Decimals(lon.abs(), 4),
             if lon >= 0.0 { 'E' } else { 'W' }
         )
     };
@@ -522,8 +529,9 @@ fn zero_area(p: &InputPolygon, r: usize, min_m2: f64) -> PlanError {
     PlanError::new(
         ErrorCode::ZeroArea,
         format!(
-            "{} encloses almost no area (less than {min_m2} m²)",
-            p.subject(r)
+            "{} encloses almost no area (less than {} m²)",
+            p.subject(r),
+            Shortest(min_m2)
         ),
     )
     .at_feature(p.feature)

@@ -293,8 +293,10 @@ fn pieces_at(
         let mid = (lane_lo + lane_hi) / 2.0;
         (mid, mid)
     };
+    // `inside_lo <= inside_hi` by construction; max and min rather than `clamp`, whose check
+    // would bring the float formatting of its panic message into the module.
     for c in &mut offsets {
-        *c = c.clamp(inside_lo, inside_hi);
+        *c = c.max(inside_lo).min(inside_hi);
     }
     offsets.dedup_by(|a, b| (*a - *b).abs() < w / 2.0);
     let swaths = on_lines(lanes, bearing, w, &offsets, min_length.max(1.0));

@@ -21,6 +21,7 @@
 use super::offset::round_step;
 use crate::error::{ErrorCode, PlanError};
 use crate::geometry::IndexedSegment;
+use crate::numbers::{Decimals, Shortest};
 use geo::{Coord, Polygon};
 use rstar::{RTree, AABB};
 
@@ -336,7 +337,9 @@ pub fn check_offsets(
     Err(PlanError::new(
         ErrorCode::FieldTooComplex,
         format!(
-            "the outlines are too detailed for headland passes at {width} m: their {edges} edges and {joins} points of rounded corners, inset by up to {deepest:.1} m{crossing}, {insets} times over, are more than the planner takes on ({MAX_OFFSET_WORK} in all); simplify the outlines or use fewer obstacles, or a wider working width, fewer headland passes or a smaller turning radius"
+            "the outlines are too detailed for headland passes at {} m: their {edges} edges and {joins} points of rounded corners, inset by up to {} m{crossing}, {insets} times over, are more than the planner takes on ({MAX_OFFSET_WORK} in all); simplify the outlines or use fewer obstacles, or a wider working width, fewer headland passes or a smaller turning radius",
+            Shortest(width),
+            Decimals(deepest, 1)
         ),
     ))
 }

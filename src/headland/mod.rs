@@ -32,6 +32,7 @@ use crate::field::Field;
 use crate::geometry::point_segment_distance;
 use crate::geometry::BooleanOps;
 use crate::geometry::PlanarHypot;
+use crate::numbers::Shortest;
 use geo::{Area, Coord, Euclidean, Length, LineString, MultiPolygon, Polygon};
 use offset::{drop_slivers, inset, line_band, open, outset, outset_fine};
 use serde::{Deserialize, Serialize};
@@ -281,8 +282,9 @@ pub fn build(
         return Err(PlanError::new(
             ErrorCode::HeadlandConsumesField,
             format!(
-                "no headland pass of {w} m fits into the field with turns of {} m radius; use a narrower width or a smaller turning radius",
-                settings.turn_radius
+                "no headland pass of {} m fits into the field with turns of {} m radius; use a narrower width or a smaller turning radius",
+                Shortest(w),
+                Shortest(settings.turn_radius)
             ),
         ));
     }

@@ -9,6 +9,7 @@
 //! its bound; the plan says so in a warning ([`coarsened`]). The plan itself is the same.
 
 use crate::error::{Warning, WarningCode};
+use crate::numbers::{Decimals, Shortest};
 use crate::path::turn::{chords_within, CHORD_TOLERANCE_M};
 use crate::path::Path;
 
@@ -93,14 +94,16 @@ pub fn coarsened(path: &Path, spacing: f64) -> Option<Warning> {
     let mut what = Vec::new();
     if tolerance > CHORD_TOLERANCE_M {
         what.push(format!(
-            "its lines are drawn with chords within {:.0} mm of the curves (rather than {:.0} mm), to stay within {MAX_OUTPUT_POINTS} points",
-            tolerance * 1000.0,
-            CHORD_TOLERANCE_M * 1000.0
+            "its lines are drawn with chords within {} mm of the curves (rather than {} mm), to stay within {MAX_OUTPUT_POINTS} points",
+            Decimals(tolerance * 1000.0, 0),
+            Decimals(CHORD_TOLERANCE_M * 1000.0, 0)
         ));
     }
     if spaced > spacing {
         what.push(format!(
-            "its path is sampled every {spaced:.2} m (rather than {spacing} m), to stay within {MAX_SAMPLES} samples"
+            "its path is sampled every {} m (rather than {} m), to stay within {MAX_SAMPLES} samples",
+            Decimals(spaced, 2),
+            Shortest(spacing)
         ));
     }
     (!what.is_empty()).then(|| {

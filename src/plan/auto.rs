@@ -15,6 +15,7 @@ use crate::direction::DirectionMode;
 use crate::error::{ErrorCode, PlanError};
 use crate::geometry::PlanarHypot;
 use crate::metrics::{DecompositionCandidate, DecompositionReport, StageTimes};
+use crate::numbers::Shortest;
 use geo::{Area, Centroid};
 use web_time::Instant;
 
@@ -93,7 +94,7 @@ pub(super) fn within_limits(
         }
         Err(why) => Err(PlanError::new(
             ErrorCode::FieldTooComplex,
-            format!("the field is too complex for split and merge at {width} m: {why}; use decomposition boustrophedon or none, or a wider working width"),
+            format!("the field is too complex for split and merge at {} m: {why}; use decomposition boustrophedon or none, or a wider working width", Shortest(width)),
         )),
     }
 }

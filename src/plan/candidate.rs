@@ -17,6 +17,7 @@ use crate::geometry::{forbids_every_direction, SweepFrame};
 use crate::headland::offset::inset;
 use crate::headland::{HeadlandPass, Headlands, PassAround};
 use crate::metrics::{summarise, DirectionFigures, DirectionReport, StageTimes, Summary};
+use crate::numbers::Decimals;
 use crate::objective::{measure_all, Machine, ObjectiveValues};
 use crate::obstacles::ObstacleClass;
 use crate::options::PlanOptions;
@@ -393,9 +394,9 @@ fn lift_over_small_obstacles(prep: &Prepared, laid: &mut Laid) {
             Warning::new(
                 WarningCode::ImplementLifted,
                 format!(
-                    "{} is less than {:.1} m across the driving direction; swaths run past it with the implement lifted",
+                    "{} is less than {} m across the driving direction; swaths run past it with the implement lifted",
                     field.obstacles[i].subject(),
-                    prep.options.obstacle_threshold_m()
+                    Decimals(prep.options.obstacle_threshold_m(), 1)
                 ),
             )
             .at_feature(field.obstacles[i].feature),
@@ -411,13 +412,13 @@ fn short_pieces_dropped(swaths: &Swaths, options: &PlanOptions) -> Option<Warnin
     Some(Warning::new(
         WarningCode::ShortSwathsDropped,
         format!(
-            "{} shorter than {:.1} m left to the headland passes",
+            "{} shorter than {} m left to the headland passes",
             if swaths.dropped == 1 {
                 "1 swath piece".to_string()
             } else {
                 format!("{} swath pieces", swaths.dropped)
             },
-            options.min_swath_length_m()
+            Decimals(options.min_swath_length_m(), 1)
         ),
     ))
 }
@@ -543,12 +544,14 @@ fn turns_leaving(path: &Path, options: &PlanOptions) -> Option<Warning> {
     Some(Warning::new(
         WarningCode::TurnLeavesField,
         format!(
-            "{} leave the field or cross an obstacle: no turn the machine can drive fits there (they reach up to {reach:.1} m beyond the swath ends, against a headland {depth:.1} m deep at most){hint}",
+            "{} leave the field or cross an obstacle: no turn the machine can drive fits there (they reach up to {} m beyond the swath ends, against a headland {} m deep at most){hint}",
             if outside.len() == 1 {
                 "1 turn".to_string()
             } else {
                 format!("{} turns", outside.len())
-            }
+            },
+            Decimals(reach, 1),
+            Decimals(depth, 1)
         ),
     ))
 }
@@ -647,10 +650,10 @@ pub(super) fn single_direction(
             Warning::new(
                 WarningCode::RegionOwnDirection,
                 format!(
-                    "{} forbids the field's direction of {:.1} degrees; it is worked at {:.1} degrees",
+                    "{} forbids the field's direction of {} degrees; it is worked at {} degrees",
                     region.subject(),
-                    bearing.to_degrees(),
-                    best.bearing.to_degrees()
+                    Decimals(bearing.to_degrees(), 1),
+                    Decimals(best.bearing.to_degrees(), 1)
                 ),
             )
             .at_feature(region.feature),
