@@ -5,7 +5,9 @@ feature (a strip of the width along it, flat ends, lifted stretches left out) ag
 in a transverse Mercator projection about the parcel (pyproj). Four machines, as in the table of
 docs/performance.md. The last column counts plans with a connection that drives through at
 least 1 m of crop the plan works later (not on the headland, not on a strip already worked: see
-crop_crossed). Needs `pip install shapely pyproj`.
+crop_crossed); the column before it counts plans whose route (a turn or a connection) runs more
+than 1 m out of the field, and of them those with no warning naming it. Needs `pip install
+shapely pyproj numpy`.
 
 usage: python3 scripts/coverage-table.py BINARY [--parcels DIR] [--json OUT]
   BINARY   the CLI, e.g. target/release/examples/plan (cargo build --release --example plan)
@@ -14,7 +16,7 @@ usage: python3 scripts/coverage-table.py BINARY [--parcels DIR] [--json OUT]
   --json   every parcel's figures, for comparing two binaries"""
 import json, subprocess, glob, sys, os, math, tempfile
 from concurrent.futures import ThreadPoolExecutor
-from shapely.geometry import shape, LineString, Polygon, MultiPolygon
+from shapely.geometry import shape, LineString, Polygon, MultiPolygon, Point
 from shapely.ops import unary_union, substring
 from shapely import transform as stransform
 from pyproj import Transformer
@@ -61,9 +63,12 @@ def evaluate(path, args, w):
     worked_at = []  # (sequence, footprint) of every working feature, for the crop crossed
     headland_feet = []
     connections = []
+    out_depth = {'turn': 0.0, 'connection': 0.0}
     for f in plan['features']:
         k = f['properties']['kind']
         if f['geometry']['type'] != 'LineString': continue
+        if k in out_depth:
+            out_depth[k] = max(out_depth[k], depth_outside(field, tf(shape(f['geometry']))))
         if k == 'connection':
             connections.append((f['properties'].get('sequence', 0), tf(shape(f['geometry']))))
         if not f['properties'].get('working', k in ('swath', 'headland', 'fill')): 
@@ -88,8 +93,21 @@ def evaluate(path, args, w):
     total = sum(f.intersection(field).area for f in feet)
     res.update(covered=covered, overlap=max(0.0, total - covered), outside=union.difference(field.buffer(0.05)).area,
                summary_cov=plan['summary'].get('coverage'), turns_outside=plan['summary'].get('turns_outside_field', 0),
-               through_crop=crop_crossed(field, headland_feet, worked_at, connections))
+               through_crop=crop_crossed(field, headland_feet, worked_at, connections),
+               turn_out_m=out_depth['turn'], connection_out_m=out_depth['connection'],
+               warnings=[w['code'] for w in plan.get('warnings', [])])
     return res
+
+def depth_outside(field, line):
+    """How far (metres) the line runs out of the field (or into a hole of it) at its worst."""
+    out = line.difference(field)
+    if out.is_empty: return 0.0
+    return max(field.boundary.distance(Point(c)) for g in getattr(out, 'geoms', [out]) for c in g.coords)
+
+def unwarned_outside(r):
+    """Whether a turn or connection runs more than 1 m out of the field with no warning naming it."""
+    return (r['turn_out_m'] > 1.0 and 'turn_leaves_field' not in r['warnings']) or \
+        (r['connection_out_m'] > 1.0 and 'connection_leaves_field' not in r['warnings'])
 
 def crop_crossed(field, headland_feet, worked_at, connections):
     """The longest stretch (metres) of a connection through crop still standing when it is driven
@@ -134,8 +152,10 @@ for m in MACHINES:
     outside = sum(1 for r in ok if r['outside'] > 1.0)
     tout = sum(1 for r in ok if r['turns_outside'] > 0)
     crossing = sum(1 for r in ok if r['through_crop'] >= 1.0)
-    table.append(f"| {name} | {len(refused)} ({len(refused_reach)}) | {100*cov:.1f} % | {100*reach:.2f} % | {100*cov/reach:.1f} % | {100*ge97:.0f} % | {100*lt90:.0f} % | {100*ov:.1f} % | {outside} | {tout} of {len(ok)} | {crossing} |")
-print('| machine | refused (of them reachable >= 50 %) | coverage, area-weighted | reachable (limit) | coverage of reachable | parcels >= 97 % of their reachable | parcels < 90 % covered | overlap | plans working > 1 m² outside | plans with turns outside | plans with a connection through >= 1 m of crop worked later |')
-print('|---|---|---|---|---|---|---|---|---|---|---|')
+    route_out = sum(1 for r in ok if max(r['turn_out_m'], r['connection_out_m']) > 1.0)
+    unwarned = sum(1 for r in ok if unwarned_outside(r))
+    table.append(f"| {name} | {len(refused)} ({len(refused_reach)}) | {100*cov:.1f} % | {100*reach:.2f} % | {100*cov/reach:.1f} % | {100*ge97:.0f} % | {100*lt90:.0f} % | {100*ov:.1f} % | {outside} | {tout} of {len(ok)} | {route_out} ({unwarned}) | {crossing} |")
+print('| machine | refused (of them reachable >= 50 %) | coverage, area-weighted | reachable (limit) | coverage of reachable | parcels >= 97 % of their reachable | parcels < 90 % covered | overlap | plans working > 1 m² outside | plans with turns outside | plans with a turn or connection > 1 m outside (of them not warned of) | plans with a connection through >= 1 m of crop worked later |')
+print('|---|---|---|---|---|---|---|---|---|---|---|---|')
 print('\n'.join(table))
 if out_json: json.dump(allres, open(out_json, 'w'))

@@ -279,6 +279,9 @@ pub enum WarningCode {
     /// Some turns between swaths leave the field or cross an obstacle: no form the machine can
     /// drive fits the headland there (the message gives the depth needed and the depth there).
     TurnLeavesField,
+    /// Some connections leave the field or cross an obstacle: no turn the machine can drive
+    /// onto, off or along the headland passes keeps in there.
+    ConnectionLeavesField,
     /// The field has too many swaths at this width to search every direction while the user
     /// waits: the swaths run along the longest edge.
     DirectionNotSearched,
@@ -311,6 +314,7 @@ impl WarningCode {
         WarningCode::RegionNotWorked,
         WarningCode::DirectionNotSearched,
         WarningCode::TurnLeavesField,
+        WarningCode::ConnectionLeavesField,
         WarningCode::OutputCoarsened,
         WarningCode::HeadlandPassesReduced,
     ];
@@ -336,6 +340,7 @@ impl WarningCode {
             WarningCode::RegionNotWorked => "region_not_worked",
             WarningCode::DirectionNotSearched => "direction_not_searched",
             WarningCode::TurnLeavesField => "turn_leaves_field",
+            WarningCode::ConnectionLeavesField => "connection_leaves_field",
             WarningCode::OutputCoarsened => "output_coarsened",
             WarningCode::HeadlandPassesReduced => "headland_passes_reduced",
         }

@@ -48,6 +48,9 @@ pub struct Summary {
     /// Turns that leave the field or cross an obstacle (none fits the headland): each is in the
     /// warnings with its cause.
     pub turns_outside_field: usize,
+    /// Connections that leave the field or cross an obstacle: each is in the warnings with its
+    /// cause.
+    pub connections_outside_field: usize,
     /// Changes of gear along the path (three-point turns, Reeds-Shepp paths); each costs
     /// [`CUSP_PENALTY_M`] of driving in the estimated time.
     pub cusp_count: usize,
@@ -294,6 +297,7 @@ pub fn summarise(
     let connection_distance_m = path.length_of(SegmentKind::Connection);
     let mut turn_forms: BTreeMap<&'static str, usize> = BTreeMap::new();
     let mut turns_outside_field = 0;
+    let connections_outside_field = path.segments.iter().filter(|s| s.leaves_field).count();
     let mut on_the_spot_turns_m = 0.0;
     for seg in &path.segments {
         if let Some(t) = &seg.turn {
@@ -346,6 +350,7 @@ pub fn summarise(
         turn_model_distance_m: route.turning_m,
         turn_forms,
         turns_outside_field,
+        connections_outside_field,
         cusp_count,
         connection_distance_m,
         block_connection_distance_m,

@@ -11,7 +11,7 @@
 //! | `swath` | LineString | `sequence`, `index`, `block`, `line`, `length_m`, `bearing_deg` (driving direction), `lifted` (if any: `[from, to]` metres from the swath's first point where the implement is lifted over a class A obstacle), `overlap_m` (on a line working a leftover strip: its overlap with the neighbouring strip), `region` (in a prohibited region worked in its own direction), `fill` (`true` in a fill block) |
 //! | `headland` | LineString | `sequence`, `pass` (1 = nearest the boundary or obstacle), `around` (`field`, `obstacle`, `block` or `fill`), `closed`, `length_m` |
 //! | `turn` | LineString | `sequence`, `block`, `length_m`, `form`, `word`, `inside` |
-//! | `connection` | LineString | `sequence`, `length_m` |
+//! | `connection` | LineString | `sequence`, `length_m`, `inside` |
 //! | `uncovered` | Polygon | `index`, `area_m2`, `reachable_m2` (what a strip of the implement's width could reach of it): crop left standing, parts larger than a quarter of a working width squared, largest first |
 //!
 //! Every drivable feature also has `distance_m`, `time_s` (from the start of the path),
@@ -160,7 +160,8 @@ pub struct Properties {
     /// A turn's word (`LSL`, `L+R-L+` …), where it has one.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub word: Option<String>,
-    /// `false` on a turn that leaves the field or crosses an obstacle (see the warnings).
+    /// `false` on a turn or connection that leaves the field or crosses an obstacle (see the
+    /// warnings); `true` on the others.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub inside: Option<bool>,
     /// The heading at each point of a drivable feature's line, compass degrees.
@@ -296,6 +297,9 @@ impl Plan {
                 let word = t.form.word();
                 p.word = (!word.is_empty()).then_some(word);
                 p.inside = Some(t.inside);
+            }
+            if seg.kind == SegmentKind::Connection {
+                p.inside = Some(!seg.leaves_field);
             }
             match seg.step.and_then(|k| self.route.steps.get(k)) {
                 Some(&RouteStep::Swath {

@@ -235,6 +235,122 @@ fn turns_stay_in_the_field_or_are_reported_with_their_cause() {
     }
 }
 
+/// How far (metres) the line runs outside the field's boundary or into one of its obstacles at
+/// its worst, by geo's point-in-polygon and distances on the line's points.
+fn depth_outside(plan: &Plan, line: &geo::LineString) -> f64 {
+    use geo::{Contains, Distance, Euclidean};
+    let boundary = &plan.field.boundary;
+    line.points()
+        .map(|q| {
+            let out = if boundary.contains(&q) {
+                0.0
+            } else {
+                Euclidean.distance(&q, boundary.exterior())
+            };
+            plan.field
+                .obstacles
+                .iter()
+                .filter(|o| o.polygon.contains(&q))
+                .map(|o| Euclidean.distance(&q, o.polygon.exterior()))
+                .fold(out, f64::max)
+        })
+        .fold(0.0, f64::max)
+}
+
+/// Whether the line leaves the field's boundary or touches one of its obstacles, by geo's
+/// predicates.
+fn touches_outside(plan: &Plan, line: &geo::LineString) -> bool {
+    use geo::{Contains, Intersects};
+    !plan.field.boundary.contains(line)
+        || plan
+            .field
+            .obstacles
+            .iter()
+            .any(|o| o.polygon.intersects(line))
+}
+
+/// Every connection between worked stretches that runs more than 5 cm out of the field or into
+/// an obstacle is flagged (`inside: false` in the output), counted in the summary and warned of
+/// with its cause; the flagged ones do leave the field.
+fn check_connections_leaving(p: &Plan, what: &str) {
+    // Those from the entrance and to the exit run from and to where the user put them.
+    let segments = &p.path.segments;
+    let between = segments.len().saturating_sub(1);
+    let connections: Vec<_> = segments
+        .iter()
+        .enumerate()
+        .filter(|&(k, s)| s.kind == SegmentKind::Connection && k > 0 && k < between)
+        .map(|(_, s)| s)
+        .collect();
+    for end in [segments.first(), segments.last()].into_iter().flatten() {
+        assert!(
+            !end.leaves_field,
+            "{what}: the entrance's or exit's connection is flagged"
+        );
+    }
+    for c in &connections {
+        let depth = depth_outside(p, &c.line);
+        if depth > 0.05 {
+            assert!(
+                c.leaves_field,
+                "{what}: a connection {depth:.2} m out is not flagged"
+            );
+        }
+        if c.leaves_field {
+            assert!(
+                touches_outside(p, &c.line),
+                "{what}: a connection inside is flagged"
+            );
+        }
+    }
+    let flagged = connections.iter().filter(|c| c.leaves_field).count();
+    assert_eq!(flagged, p.summary.connections_outside_field, "{what}");
+    let warned = p
+        .warnings
+        .iter()
+        .find(|w| w.code == WarningCode::ConnectionLeavesField);
+    match warned {
+        None => assert_eq!(flagged, 0, "{what}: connections leave unreported"),
+        Some(w) => {
+            assert!(flagged > 0, "{what}: warned of no connection");
+            assert!(
+                w.message.contains(&flagged.to_string()),
+                "{what}: {}",
+                w.message
+            );
+            assert!(w.message.contains("headland"), "{what}: {}", w.message);
+        }
+    }
+}
+
+#[test]
+fn connections_that_leave_the_field_are_flagged_and_warned_of() {
+    for field in valid_fields() {
+        for (machine, options) in machines(&field.options) {
+            let what = format!("{} ({machine})", field.name);
+            check_connections_leaving(&plan(&field.text(), &options, &what), &what);
+        }
+    }
+    // A 6 m drill with two passes turning at 8 m (forward only): the l- and h-shaped fields have
+    // corners where its joins onto the passes cannot stay in.
+    let drill = PlanOptions {
+        width: 6.0,
+        headland_passes: furrow::headland::passes::HeadlandPasses::Count(2),
+        turn_radius: 8.0,
+        ..PlanOptions::default()
+    };
+    let mut flagged = 0;
+    for field in valid_fields()
+        .into_iter()
+        .filter(|f| ["l-shape", "h-shape"].contains(&f.name.as_str()))
+    {
+        let p = plan(&field.text(), &drill, &field.name);
+        check_connections_leaving(&p, &field.name);
+        flagged += p.summary.connections_outside_field;
+    }
+    assert!(flagged > 0, "no connection of the drill leaves the field");
+}
+
 #[test]
 fn the_path_follows_the_route_and_turns_cost_what_they_are() {
     // The rectangle: the path's working distance is the route's (swaths and headland passes

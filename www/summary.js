@@ -53,6 +53,15 @@ export function renderSummary(s, options, callMs) {
           ],
         ]
       : []),
+    ...(num(s.connections_outside_field) > 0
+      ? [
+          [
+            "Connections outside the field",
+            s.connections_outside_field,
+            { key: "connections_outside_field", title: "No turn the machine can drive onto, off or along the headland passes keeps in there (see the warnings)" },
+          ],
+        ]
+      : []),
     ["Connections", km(s.connection_distance_m), { key: "connection_distance_m" }],
     ["Total distance", km(s.total_distance_m), { key: "total_distance_m", cls: "total" }],
     ...(s.coverage

@@ -302,7 +302,7 @@ export interface PlanFeatureProperties {
   form?: "u-turn" | "loop" | "three-point" | "reeds-shepp" | "cc-u-turn" | "cc-loop" | "on-the-spot" | "lifted" | "none";
   /** A turn's word, e.g. `"LSL"` or `"L+R-L+"`. */
   word?: string;
-  /** `false` on a turn that leaves the field or crosses an obstacle (see the `turn_leaves_field` warning). */
+  /** Turns and connections: `false` where it leaves the field or crosses an obstacle (see the `turn_leaves_field` and `connection_leaves_field` warnings). */
   inside?: boolean;
   /** Drivable features: the heading at each point of the line, compass degrees. */
   heading_deg?: number[];
@@ -346,6 +346,8 @@ export interface PlanSummary {
   turn_forms: Record<string, number>;
   /** Turns that leave the field or cross an obstacle; each is warned of with its cause. */
   turns_outside_field: number;
+  /** Connections that leave the field or cross an obstacle; each is warned of with its cause. */
+  connections_outside_field: number;
   /** Changes of gear along the path. */
   cusp_count: number;
   /** Connections between blocks, onto the headland passes, from the entrance and to the exit. */
@@ -554,6 +556,7 @@ export type WarningCode =
   | "region_not_worked"
   | "direction_not_searched"
   | "turn_leaves_field"
+  | "connection_leaves_field"
   | "output_coarsened"
   | "headland_passes_reduced";
 

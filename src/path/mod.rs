@@ -98,6 +98,10 @@ pub struct PathSegment {
     pub step: Option<usize>,
     /// For a turn: its form and whether it stays in the field.
     pub turn: Option<TurnReport>,
+    /// For a connection between two worked stretches (not from the entrance or to the exit):
+    /// whether it leaves the field or crosses an obstacle (no turn the machine can drive onto,
+    /// off or along the headland passes keeps in there).
+    pub leaves_field: bool,
 }
 
 impl PathSegment {
@@ -135,6 +139,7 @@ impl PathSegment {
             line: LineString::new(pts),
             step,
             turn: None,
+            leaves_field: false,
         }
     }
 
@@ -210,11 +215,6 @@ pub fn build_path(
 ) -> Path {
     // The worked segments first (a headland pass with manoeuvres is several, with the turns
     // between), each step with the connection the route found into it.
-    struct Worked {
-        segments: Vec<PathSegment>,
-        block: Option<usize>,
-        into: Option<LineString>,
-    }
     let mut worked: Vec<Worked> = Vec::with_capacity(route.steps.len());
     let mut last_point: Option<Coord> = None;
     for (k, step) in route.steps.iter().enumerate() {
@@ -223,6 +223,7 @@ pub fn build_path(
             .get(k)
             .and_then(|c| c.as_ref())
             .map(|c| c.line.clone());
+        let mut ring = None;
         let (segments, block) = match *step {
             RouteStep::Swath {
                 swath,
@@ -257,7 +258,10 @@ pub fn build_path(
                         .or(last_point);
                     let (_, entry) = nearest_on_ring(&p.line, at);
                     // All the way round, back to where it was entered.
-                    follow_round_in(&ring_starting_at(&p.line, entry).0, vehicle, area)
+                    let round = ring_starting_at(&p.line, entry).0;
+                    let driven = follow_round_in(&round, vehicle, area);
+                    ring = Some((round, k));
+                    driven
                 } else if reversed {
                     let line: Vec<Coord> = p.line.0.iter().rev().copied().collect();
                     follow_in(&line, vehicle, area)
@@ -275,11 +279,12 @@ pub fn build_path(
             segments,
             block,
             into,
+            ring,
         });
     }
     let mut segments: Vec<PathSegment> = Vec::with_capacity(worked.len() * 2 + 2);
     let mut previous: Option<(Pose, Option<usize>)> = None;
-    for w in worked {
+    for mut w in worked {
         let Some(start) = w.segments.first().and_then(PathSegment::start) else {
             continue;
         };
@@ -293,7 +298,16 @@ pub fn build_path(
                 } else if let Some(c) =
                     connection(Some(from), Some(start), w.into.as_ref(), vehicle, area)
                 {
-                    segments.push(c);
+                    match c
+                        .leaves_field
+                        .then(|| the_other_way(&w, from, vehicle, area))
+                    {
+                        Some(Some((c, pass))) => {
+                            segments.push(c);
+                            w.segments = pass;
+                        }
+                        _ => segments.push(c),
+                    }
                 }
             }
             None => {
@@ -316,6 +330,44 @@ pub fn build_path(
         }
     }
     Path { segments }
+}
+
+/// A route step's worked segments, as `build_path` lays them before the connections.
+struct Worked {
+    segments: Vec<PathSegment>,
+    block: Option<usize>,
+    /// The route's connection into the step.
+    into: Option<LineString>,
+    /// A closed pass: its ring as driven (from where it is entered) and its route step.
+    ring: Option<(Vec<Coord>, usize)>,
+}
+
+/// A closed pass whose connection from `from` leaves the field, driven round the other way: the
+/// connection into it and its segments, where that connection stays in and the pass is worked
+/// as far as the first way round.
+fn the_other_way(
+    w: &Worked,
+    from: Pose,
+    v: &Vehicle,
+    area: Option<&Area>,
+) -> Option<(PathSegment, Vec<PathSegment>)> {
+    let (ring, step) = w.ring.as_ref()?;
+    let reversed: Vec<Coord> = ring.iter().rev().copied().collect();
+    let (pieces, manoeuvres) = follow_round_in(&reversed, v, area);
+    let pass = pass_segments(pieces, &manoeuvres, *step);
+    let worked = |segments: &[PathSegment]| -> f64 {
+        segments
+            .iter()
+            .filter(|s| s.is_working())
+            .map(PathSegment::length)
+            .sum()
+    };
+    if worked(&pass) < worked(&w.segments) - 0.5 {
+        return None;
+    }
+    let start = pass.first().and_then(PathSegment::start)?;
+    let c = connection(Some(from), Some(start), w.into.as_ref(), v, area)?;
+    (!c.leaves_field).then_some((c, pass))
 }
 
 /// The path's segments along a headland pass (route step `step`): its pieces worked, each of its
@@ -459,7 +511,12 @@ fn connection(
     if pieces.is_empty() {
         return None;
     }
-    Some(PathSegment::new(SegmentKind::Connection, pieces, None))
+    let mut segment = PathSegment::new(SegmentKind::Connection, pieces, None);
+    // From the entrance and to the exit the machine drives where the user put them, often
+    // outside: those are not checked.
+    segment.leaves_field =
+        from.is_some() && to.is_some() && area.is_some_and(|a| !a.contains(&segment.pieces));
+    Some(segment)
 }
 
 /// Distances along a connection's line (in turning radii) at which a join from the pose before

@@ -203,7 +203,9 @@ pub(super) fn fill_leftovers(
     warnings.retain(|w| {
         !matches!(
             w.code,
-            WarningCode::StraightConnections | WarningCode::TurnLeavesField
+            WarningCode::StraightConnections
+                | WarningCode::TurnLeavesField
+                | WarningCode::ConnectionLeavesField
         )
     });
     let (route, path, summary) = route_and_path(prep, &laid, &blocks, None, &mut warnings, times)?;
@@ -264,6 +266,7 @@ fn route_and_path(
     };
     times.lap(&mut clock, |t| &mut t.path);
     warnings.extend(turns_leaving(path, prep.options));
+    warnings.extend(connections_leaving(path, prep.options));
     let summary = measure(prep, laid, blocks, &route, path, prep.options.machine());
     times.lap(&mut clock, |t| &mut t.metrics);
     Ok((route, built, summary))
@@ -544,16 +547,42 @@ fn turns_leaving(path: &Path, options: &PlanOptions) -> Option<Warning> {
     Some(Warning::new(
         WarningCode::TurnLeavesField,
         format!(
-            "{} leave the field or cross an obstacle: no turn the machine can drive fits there (they reach up to {} m beyond the swath ends, against a headland {} m deep at most){hint}",
-            if outside.len() == 1 {
-                "1 turn".to_string()
-            } else {
-                format!("{} turns", outside.len())
-            },
+            "{} the field or cross an obstacle: no turn the machine can drive fits there (reaching up to {} m beyond the swath ends, against a headland {} m deep at most){hint}",
+            leave(outside.len(), "turn"),
             Decimals(reach, 1),
             Decimals(depth, 1)
         ),
     ))
+}
+
+/// The warning for the connections that leave the field or cross an obstacle, with their cause.
+fn connections_leaving(path: &Path, options: &PlanOptions) -> Option<Warning> {
+    let outside = path.segments.iter().filter(|s| s.leaves_field).count();
+    if outside == 0 {
+        return None;
+    }
+    let hint = if options.reverse {
+        ""
+    } else {
+        "; allowing the machine to reverse may let it turn within the headland"
+    };
+    Some(Warning::new(
+        WarningCode::ConnectionLeavesField,
+        format!(
+            "{} the field or cross an obstacle: no turn the machine can drive onto, off or along the headland passes keeps within a headland {} m deep there{hint}",
+            leave(outside, "connection"),
+            Decimals(options.headland_pass_count() as f64 * options.width, 1)
+        ),
+    ))
+}
+
+/// "1 turn leaves", "3 turns leave".
+fn leave(count: usize, what: &str) -> String {
+    if count == 1 {
+        format!("1 {what} leaves")
+    } else {
+        format!("{count} {what}s leave")
+    }
 }
 
 /// Where the blocks of `b` are those of `a` in the same order, of the same swaths in the same
