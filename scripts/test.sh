@@ -35,13 +35,7 @@ lints() {
 step "lints" lints
 step "native tests" cargo test
 # Every worst-case input plans or is refused within 60 s and 4 GB (a hang check, in release).
-# Without the release profile's whole-program optimisation (fat LTO, one codegen unit): the
-# build takes a fraction of the time, the cases run about as fast.
-termination() {
-  CARGO_PROFILE_RELEASE_LTO=false CARGO_PROFILE_RELEASE_CODEGEN_UNITS=16 \
-    cargo test --release --test termination -- --ignored every_case_plans_or_is_refused_in_time
-}
-step "termination (release)" termination
+step "termination (release)" cargo test --release --test termination -- --ignored every_case_plans_or_is_refused_in_time
 step "wasm tests in Node" wasm_test
 step "wasm tests in Chromium" env WASM_BINDGEN_USE_BROWSER=1 bash -c "$(declare -f wasm_test); wasm_test"
 step "package build" scripts/build.sh
