@@ -353,6 +353,16 @@ fn the_other_way(
 ) -> Option<(PathSegment, Vec<PathSegment>)> {
     let (ring, step) = w.ring.as_ref()?;
     let reversed: Vec<Coord> = ring.iter().rev().copied().collect();
+    // The connection onto the ring's first edge first: following the ring costs far more.
+    let first = *reversed.first()?;
+    let next = reversed
+        .iter()
+        .find(|q| (q.x - first.x).planar_hypot(q.y - first.y) > 1e-6)?;
+    let onto = Pose::new(first.x, first.y, (next.y - first.y).atan2(next.x - first.x));
+    let mut c = connection(Some(from), Some(onto), w.into.as_ref(), v, area)?;
+    if c.leaves_field {
+        return None;
+    }
     let (pieces, manoeuvres) = follow_round_in(&reversed, v, area);
     let pass = pass_segments(pieces, &manoeuvres, *step);
     let worked = |segments: &[PathSegment]| -> f64 {
@@ -366,7 +376,9 @@ fn the_other_way(
         return None;
     }
     let start = pass.first().and_then(PathSegment::start)?;
-    let c = connection(Some(from), Some(start), w.into.as_ref(), v, area)?;
+    if start.distance(&onto) > 1e-9 || start.heading_change(&onto).abs() > 1e-9 {
+        c = connection(Some(from), Some(start), w.into.as_ref(), v, area)?;
+    }
     (!c.leaves_field).then_some((c, pass))
 }
 
