@@ -457,9 +457,15 @@ fn connection(
     v: &Vehicle,
     area: Option<&Area>,
 ) -> Option<PathSegment> {
-    // A join between two poses: the cheapest turn that stays in the field where one does.
+    // A join between two poses: the cheapest turn that stays in the field where one does
+    // (noted where none does).
+    let leaves = std::cell::Cell::new(false);
     let join = |a: Pose, b: Pose| match area {
-        Some(ar) => v.turn(a, b, ar),
+        Some(ar) => {
+            let t = v.turn(a, b, ar);
+            leaves.set(leaves.get() || !t.inside);
+            t
+        }
         None => v.shortest(a, b),
     };
     // What a join costs when choosing where to join: leaving the field costs more than any
@@ -501,6 +507,8 @@ fn connection(
             });
             let middle = cut_polyline(&pts, start_at, length - end_at);
             let mut along = follow(&middle, v);
+            // The joins are checked as they are chosen; the line followed between them here.
+            leaves.set(area.is_some_and(|a| !along.is_empty() && !a.contains(&along)));
             if along.is_empty() {
                 match (from, to) {
                     (Some(a), Some(b)) => along = join(a, b).segments,
@@ -526,8 +534,7 @@ fn connection(
     let mut segment = PathSegment::new(SegmentKind::Connection, pieces, None);
     // From the entrance and to the exit the machine drives where the user put them, often
     // outside: those are not checked.
-    segment.leaves_field =
-        from.is_some() && to.is_some() && area.is_some_and(|a| !a.contains(&segment.pieces));
+    segment.leaves_field = from.is_some() && to.is_some() && leaves.get();
     Some(segment)
 }
 
