@@ -287,7 +287,7 @@ fn plan_with_passes(
             single_direction(
                 &field,
                 options,
-                &headlands.inner,
+                &headlands,
                 direction.bearing,
                 direction.placement,
                 &search,

@@ -111,7 +111,8 @@ fn every_valid_field_plans_and_keeps_the_invariants() {
     }
 }
 
-/// Swaths lie inside the inner field, parallel to the bearing, one width apart.
+/// Swaths work the inner field with their strips in the region, parallel to the bearing, one
+/// width apart.
 fn check_swaths(plan: &Plan, name: &str) {
     let w = plan.options.width;
     let inner = &plan.headlands.inner;
@@ -128,15 +129,35 @@ fn check_swaths(plan: &Plan, name: &str) {
             check_fill_swath(plan, s, name);
             continue;
         }
-        let mid = Point((s.centre.start + s.centre.end) / 2.0);
-        assert!(
-            inner.contains(&mid),
-            "{name}: swath {} leaves the inner field",
-            s.index
-        );
-        for end in [s.centre.start, s.centre.end] {
-            let d = Euclidean.distance(&Point(end), inner);
-            assert!(d < EPS, "{name}: swath {} ends {d} m outside", s.index);
+        // A swath runs on into the headland as far as the line a quarter width beside its
+        // centre is in the inner field, its whole strip in the region (the field less the
+        // obstacles with headlands).
+        let region = &plan.headlands.region;
+        for at in [
+            s.centre.start,
+            (s.centre.start + s.centre.end) / 2.0,
+            s.centre.end,
+        ] {
+            let d = Euclidean.distance(&Point(at), inner);
+            assert!(
+                d < w / 4.0 + EPS,
+                "{name}: swath {} runs {d} m from the inner field",
+                s.index
+            );
+        }
+        for (c, a) in [
+            (-1.0, s.along.0),
+            (1.0, s.along.0),
+            (-1.0, s.along.1),
+            (1.0, s.along.1),
+        ] {
+            let corner = Point(s.frame.point(s.across + c * (w / 2.0 - 1e-3), a));
+            let d = Euclidean.distance(&corner, region);
+            assert!(
+                region.contains(&corner) || d < EPS,
+                "{name}: swath {}'s strip reaches {d} m out of the region",
+                s.index
+            );
         }
         let b = furrow::geometry::bearing_of(s.centre.start, s.centre.end);
         let diff = furrow::geometry::swath_direction(b - s.bearing);

@@ -13,7 +13,7 @@ use furrow::headland::PassAround;
 use furrow::route::pattern::turn_between;
 use furrow::route::RouteStep;
 use furrow::{plan_geojson, Plan, PlanOptions};
-use geo::{Area, BooleanOps, Contains, MultiPolygon, Point};
+use geo::{Area, BooleanOps, Contains, Distance, Euclidean, MultiPolygon, Point};
 
 fn plan_with(field: &CorpusField, d: Decomposition) -> Plan {
     let options = PlanOptions {
@@ -126,13 +126,15 @@ fn blocks_partition_the_inner_field_and_keep_forbidden_directions_on_every_field
             let name = format!("{} ({})", field.name, d.as_str());
             check_partition(&plan, &name);
             check_forbidden(&plan, &name);
-            // Every swath lies in its block.
+            // Every swath works its block: its middle is in it, or (a line whose centre just
+            // misses the block, reaching into it from the headland) within a quarter width.
             for a in &plan.swaths.areas {
                 for s in &plan.swaths.swaths[a.swaths.clone()] {
                     let mid = Point((s.centre.start + s.centre.end) / 2.0);
+                    let d = Euclidean.distance(&mid, &a.area);
                     assert!(
-                        a.area.contains(&mid) || a.area.unsigned_area() == 0.0,
-                        "{name}: swath {} outside its block",
+                        d <= plan.options.width / 4.0 + 1e-6 || a.area.unsigned_area() == 0.0,
+                        "{name}: swath {} {d} m outside its block",
                         s.index
                     );
                 }
@@ -269,11 +271,13 @@ fn decomposing_beats_the_best_single_direction_on_fields_with_arms_and_bays() {
                 field.name
             );
         }
-        // Not by leaving crop: the decomposed plan covers as much of its inner field, within
-        // half a percent (its blocks' ends along borders at an angle leave a little more).
+        // Not by leaving crop: the decomposed plan covers as much of the field, within half a
+        // percent (its blocks' ends along borders at an angle leave a little more; the swaths of
+        // one direction run on into the headland where their strips reach the inner field,
+        // those of split and merge's blocks end with their centre lines).
         let (ca, cb) = (
-            single.summary.objectives.coverage,
-            decomposed.summary.objectives.coverage,
+            single.summary.coverage.coverage_ratio,
+            decomposed.summary.coverage.coverage_ratio,
         );
         assert!(cb >= ca - 0.005, "{}: covers {cb} against {ca}", field.name);
         rows.push(field.name.clone());

@@ -12,8 +12,8 @@ use furrow::geometry::{bearing_of, forbids_every_direction, swath_direction, Bea
 use furrow::obstacles::ObstacleClass;
 use furrow::{plan, plan_geojson, ErrorCode, Plan, PlanOptions};
 use geo::{
-    Area, BooleanOps, BoundingRect, Contains, ConvexHull, Coord, Distance, Intersects, Length,
-    Line, LineString, MultiLineString, MultiPolygon, Point, Polygon,
+    Area, BooleanOps, BoundingRect, Contains, ConvexHull, Coord, Distance, Euclidean, Intersects,
+    Length, Line, LineString, MultiLineString, MultiPolygon, Point, Polygon,
 };
 use proptest::prelude::*;
 use std::f64::consts::PI;
@@ -92,13 +92,36 @@ fn check_swaths(plan: &Plan, name: &str) {
         if s.index >= fill_from {
             check_fill_swath(plan, &id, &line);
         } else {
-            // Inside the inner field: the midpoint inside, and no crossing of its boundary.
+            // Working the inner field: inside it, or (where its strip reaches the inner field
+            // from the headland) within a quarter width of it, its strip in the region.
             let mid = Point((s.centre.start + s.centre.end) / 2.0);
-            assert!(inner.contains(&mid), "{id} leaves the inner field");
+            let reached =
+                |p: Point| inner.contains(&p) || Euclidean.distance(&p, inner) <= w / 4.0 + 1e-6;
+            assert!(reached(mid), "{id} leaves the inner field");
             let bounds = line.bounding_rect();
-            for e in &edges {
-                if e.bounding_rect().intersects(&bounds) {
-                    assert!(!line.intersects(e), "{id} crosses the inner field's edge");
+            let inside = edges
+                .iter()
+                .filter(|e| e.bounding_rect().intersects(&bounds))
+                .all(|e| !line.intersects(e));
+            if !inside {
+                for end in [s.centre.start, s.centre.end] {
+                    assert!(
+                        reached(Point(end)),
+                        "{id} runs on beyond a quarter width of the inner field"
+                    );
+                }
+                let region = &plan.headlands.region;
+                for (c, a) in [
+                    (-1.0, s.along.0),
+                    (1.0, s.along.0),
+                    (-1.0, s.along.1),
+                    (1.0, s.along.1),
+                ] {
+                    let corner = Point(s.frame.point(s.across + c * (w / 2.0 - 1e-3), a));
+                    assert!(
+                        region.contains(&corner) || Euclidean.distance(&corner, region) < 1e-3,
+                        "{id}'s strip reaches out of the region"
+                    );
                 }
             }
             for hole in &holes {

@@ -80,21 +80,28 @@ impl BoustrophedonCells {
     }
 
     /// The cell holding the point at `(across, along)` in the frame: the trapezoid whose slab
-    /// and ends enclose it, or the nearest one along the slab.
-    pub fn cell_at(&self, across: f64, along: f64) -> Option<usize> {
+    /// and ends enclose it, or the nearest one within `margin` across (metres) of its slab and
+    /// any distance along it.
+    pub fn cell_at(&self, across: f64, along: f64, margin: f64) -> Option<usize> {
+        let reach = margin.max(0.0) + ON_LINE_M;
         let from = self
             .trapezoids
-            .partition_point(|t| t.across.1 < across - ON_LINE_M);
+            .partition_point(|t| t.across.1 < across - reach);
         let mut best: Option<(f64, usize)> = None;
         for (i, t) in self.trapezoids.iter().enumerate().skip(from) {
-            if t.across.0 > across + ON_LINE_M {
+            if t.across.0 > across + reach {
                 break;
             }
-            if t.across.1 < across - ON_LINE_M {
+            if t.across.1 < across - reach {
                 continue;
             }
-            let (lo, hi) = t.ends_at(across);
-            let miss = (lo - along).max(along - hi).max(0.0);
+            let at = across.max(t.across.0).min(t.across.1);
+            let (lo, hi) = t.ends_at(at);
+            let miss = (lo - along)
+                .max(along - hi)
+                .max(t.across.0 - across)
+                .max(across - t.across.1)
+                .max(0.0);
             if best.is_none_or(|(m, _)| miss < m) {
                 best = Some((miss, i));
             }
@@ -110,6 +117,8 @@ impl BoustrophedonCells {
 /// numbers and areas, after the cells'.
 pub fn cluster_into_cells(swaths: &mut Swaths, cells: &BoustrophedonCells) {
     let frame = cells.frame;
+    // A swath reaching into the inner field from the headland lies up to a quarter width beside it.
+    let reach = swaths.width / 4.0;
     let fill_from = swaths.first_fill_swath();
     let fill_swaths = swaths.swaths.split_off(fill_from);
     let fill_areas: Vec<SwathArea> = swaths.areas.iter().filter(|a| a.fill).cloned().collect();
@@ -118,7 +127,7 @@ pub fn cluster_into_cells(swaths: &mut Swaths, cells: &BoustrophedonCells) {
         .iter()
         .map(|s| {
             let (c, a) = frame.project((s.centre.start + s.centre.end) / 2.0);
-            (cells.cell_at(c, a).unwrap_or(usize::MAX), *s)
+            (cells.cell_at(c, a, reach).unwrap_or(usize::MAX), *s)
         })
         .collect();
     // Stable: within a cell the swaths keep their line order.

@@ -7,6 +7,7 @@
 pub mod bearing;
 pub mod bearing_range;
 pub mod distance;
+pub mod intervals;
 pub mod overlay;
 pub mod parallel_lines;
 pub mod polygon_distance;

@@ -354,7 +354,8 @@ pub fn follow_round_in(
 }
 
 /// Distance along `path` (past `from`) where it is first on the line of `edge` (within a
-/// millimetre), heading along it, level with the edge's start or past it.
+/// millimetre), heading along it, level with the edge's start or past it, and straight (a
+/// clothoid easing onto the edge is followed to its end).
 fn back_on_first_edge(path: &[Segment], edge: &Edge, from: f64, radius: f64) -> Option<f64> {
     // At most about 100,000 samples, however long the ring and small the radius.
     let step = (radius / 20.0).clamp(0.01, 0.5).max(from / 50_000.0);
@@ -382,6 +383,11 @@ fn back_on_first_edge(path: &[Segment], edge: &Edge, from: f64, radius: f64) -> 
                         } else {
                             lo = mid;
                         }
+                    }
+                    // Within a rounding's easing out (a clothoid coming onto the edge within
+                    // the tolerances): at its end, where it is straight again.
+                    if seg.curvature_at(hi).abs() > 1e-9 {
+                        return Some(done + seg.length);
                     }
                     return Some(done + hi);
                 }

@@ -26,7 +26,8 @@ use crate::prohibited::{forbidding, split};
 use crate::route::headland_graph::HeadlandGraph;
 use crate::route::{plan_route, plan_route_on, Route, RouteSettings};
 use crate::swath::{
-    generate_with, generate_within, lifts, LinePlacement, Swath, SwathArea, SwathSettings, Swaths,
+    generate_reaching, generate_with, generate_within, lifts, LinePlacement, Reach, Swath,
+    SwathArea, SwathSettings, Swaths,
 };
 use geo::Area;
 use web_time::Instant;
@@ -330,8 +331,12 @@ fn lay_split_merge(prep: &Prepared, sm: SplitMerge) -> Result<Laid, PlanError> {
             .map_or(prep.direction.bearing, |b| b.bearing),
         width,
     );
+    // The blocks' swaths end where their centre lines leave the blocks: run on into the
+    // headland, they changed which of split and merge's seeds looked fastest, and the plans
+    // chosen then left more for the fill (h-shape, 6 m drill: 99.2 → 98.7 % covered, 14 %
+    // longer).
     for b in cut.blocks {
-        swaths.append(area_swaths(b.area, b.bearing, None, options)?);
+        swaths.append(area_swaths(b.area, b.bearing, None, None, options)?);
     }
     Ok(Laid {
         headlands,
@@ -627,11 +632,17 @@ pub(super) struct SingleDirection {
 pub(super) fn single_direction(
     field: &Field,
     options: &PlanOptions,
-    inner: &geo::MultiPolygon,
+    headlands: &Headlands,
     bearing: f64,
     placement: LinePlacement,
     search: &AreaSearch,
 ) -> Result<SingleDirection, PlanError> {
+    let inner = &headlands.inner;
+    let reach = Reach {
+        region: &headlands.region,
+        inner,
+        avoid: None,
+    };
     // Prohibited regions that forbid the direction are cut out and worked in their own.
     let cut = forbidding(&field.prohibited, bearing);
     let (main_area, parts) = if cut.is_empty() {
@@ -647,6 +658,7 @@ pub(super) fn single_direction(
     let main = swaths_of(
         options,
         &main_area,
+        Some((reach, &field.prohibited)),
         &SwathSettings {
             bearing,
             width: options.width,
@@ -673,6 +685,7 @@ pub(super) fn single_direction(
             part.area,
             best.bearing,
             Some(part.region),
+            Some((reach, &field.prohibited)),
             options,
         )?);
         out.warnings.push(
@@ -710,11 +723,13 @@ fn area_swaths(
     area: geo::MultiPolygon,
     bearing: f64,
     region: Option<usize>,
+    reach: Option<(Reach<'_>, &[ProhibitedRegion])>,
     options: &PlanOptions,
 ) -> Result<Swaths, PlanError> {
     let mut own = swaths_of(
         options,
         &area,
+        reach,
         &SwathSettings {
             bearing,
             width: options.width,
@@ -747,17 +762,35 @@ fn no_swaths(bearing: f64, width: f64) -> Swaths {
 
 /// The swaths of `area`: where the field has no headland (no passes asked for, or none fit),
 /// they end at the boundary itself, and only where the implement's whole strip is inside
-/// ([`generate_within`]); else they end on the inner field's edge, the headland beyond.
+/// ([`generate_within`]); else, given the headland round them (`reach`), they run on into it
+/// as far as their strips work the area ([`generate_reaching`]), without it they end where
+/// their centre lines leave the area ([`generate_with`]).
 fn swaths_of(
     options: &PlanOptions,
     area: &geo::MultiPolygon,
+    reach: Option<(Reach<'_>, &[ProhibitedRegion])>,
     settings: &SwathSettings,
 ) -> Result<Swaths, PlanError> {
     if options.headland_pass_count() == 0 {
-        generate_within(area, settings)
-    } else {
-        generate_with(area, settings)
+        return generate_within(area, settings);
     }
+    let Some((reach, regions)) = reach else {
+        return generate_with(area, settings);
+    };
+    // The strips stay out of the prohibited regions that forbid their direction, where those
+    // reach into the headland.
+    let avoid = geo::MultiPolygon::new(
+        forbidding(regions, settings.bearing)
+            .into_iter()
+            .filter_map(|i| regions.get(i))
+            .map(|r| r.polygon.clone())
+            .collect(),
+    );
+    let reach = Reach {
+        avoid: (!avoid.0.is_empty()).then_some(&avoid),
+        ..reach
+    };
+    generate_reaching(area, settings, reach)
 }
 
 #[cfg(test)]
