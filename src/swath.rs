@@ -363,10 +363,11 @@ pub struct Reach<'a> {
 /// [`generate_with`], each swath running on along its line as long as its strip still works
 /// `area` well (a line a quarter of a width to one side of its centre is inside,
 /// [`REACH_SIDE_WIDTHS`]) and the whole strip stays in the headland round it ([`Reach`]): an end
-/// the area's edge cuts at a slant works most of the triangle beside it, and a line whose centre
-/// just misses an edge nearly parallel to it works most of the wedge between its neighbour and
-/// the headland. Where the headland crosses a line (round an obstacle, or a bay), the line
-/// stays cut.
+/// the area's edge cuts at a slant works most of the triangle beside it, and a line leaving the
+/// area across an edge nearly parallel to it runs on along most of the wedge between its
+/// neighbour and the headland. Only a piece long enough to be a swath runs on, and never into
+/// the next piece of its line: where the headland crosses a line (round an obstacle, or a bay),
+/// the line stays cut.
 ///
 /// ```
 /// use furrow::swath::{generate_reaching, generate_with, LinePlacement, Reach, SwathSettings};

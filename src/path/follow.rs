@@ -655,6 +655,30 @@ mod tests {
     }
 
     #[test]
+    fn a_ring_round_continuous_curvature_corners_ends_straight() {
+        // Started at a corner, the ring's path ends past that corner's rounding: where it is
+        // straight on the first edge again, not within the clothoid easing onto it (whose end
+        // comes within the tolerances of the edge's line and heading before it is straight).
+        let v = Vehicle {
+            turn_radius: 2.1,
+            curvature_rate: Some(0.1),
+            ..Vehicle::default()
+        };
+        let ring = [
+            coord! { x: 0.0, y: 0.0 },
+            coord! { x: 100.0, y: 0.0 },
+            coord! { x: 100.0, y: 100.0 },
+            coord! { x: 0.0, y: 100.0 },
+            coord! { x: 0.0, y: 0.0 },
+        ];
+        let path = follow_round(&ring, &v);
+        let last = path.last().expect("a path");
+        assert!(last.curvature_at(last.length).abs() < 1e-9, "{last:?}");
+        let end = last.end();
+        assert!(end.y.abs() < 1e-6 && end.heading.abs() < 1e-9, "{end:?}");
+    }
+
+    #[test]
     fn continuous_curvature_corners_keep_curvature_and_its_rate() {
         let v = Vehicle {
             turn_radius: 6.0,
