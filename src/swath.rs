@@ -7,6 +7,8 @@
 //! strip ends at the edge, overlapping its neighbour, rather than dropped (which leaves crop
 //! standing, a known complaint about Fields2Cover). Lines are cut where they leave the inner field
 //! or cross an obstacle; pieces shorter than a minimum length are left to the headland passes.
+//! Where a headland is given, a swath may run on into it at a slanted end, as far as its strip
+//! still works the inner field well ([`generate_reaching`]).
 
 use crate::error::{ErrorCode, PlanError};
 use crate::geometry::intervals::{difference, intersection, union, Intervals};

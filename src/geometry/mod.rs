@@ -1,8 +1,9 @@
 //! Small geometric helpers shared by the pipeline stages: boolean operations and buffers of
 //! polygons, compass bearings, point-to-segment distance, the planar `hypot`, `min`, `max` and
 //! `round` of the hot loops, Douglas-Peucker simplification and sleeve fitting, whether two
-//! polygons come within a distance, segments for R-trees, and sets of parallel lines clipped by
-//! polygons (the core of swath generation; one such line limited to a segment).
+//! polygons come within a distance, segments for R-trees, sets of parallel lines clipped by
+//! polygons (the core of swath generation; one such line limited to a segment), and the union,
+//! intersection and difference of the pieces of a line.
 
 pub mod bearing;
 pub mod bearing_range;
