@@ -976,6 +976,24 @@ mod tests {
         assert!(s.swaths.iter().all(|w| w.length() >= 10.0));
     }
 
+    /// Swaths 6 m wide running north, the first line half a width in.
+    const NORTH_6M: SwathSettings = SwathSettings {
+        bearing: 0.0,
+        width: 6.0,
+        min_length: 6.0,
+        placement: LinePlacement::FromEdge,
+    };
+
+    /// [`NORTH_6M`]'s swaths of `inner` reaching into the headland of `region`.
+    fn reaching_into(inner: &MultiPolygon, region: &MultiPolygon) -> Swaths {
+        let reach = Reach {
+            region,
+            inner,
+            avoid: None,
+        };
+        generate_reaching(inner, &NORTH_6M, reach).unwrap_or_else(|e| panic!("{e}"))
+    }
+
     /// The share of `area` (sampled on a 0.25 m grid) that no swath's strip of `width` covers.
     fn left_standing(area: &geo::Polygon, swaths: &Swaths, width: f64) -> f64 {
         let (mut inside, mut left) = (0usize, 0usize);
@@ -1009,20 +1027,8 @@ mod tests {
             polygon![(x: 0., y: 0.), (x: 40., y: 0.), (x: 50., y: 200.), (x: 0., y: 160.)];
         let inner = MultiPolygon::new(vec![inner_ring.clone()]);
         let region = crate::headland::offset::outset(&inner, 12.0);
-        let settings = SwathSettings {
-            bearing: 0.0,
-            width: 6.0,
-            min_length: 6.0,
-            placement: LinePlacement::FromEdge,
-        };
-        let cut = generate_with(&inner, &settings).unwrap_or_else(|e| panic!("{e}"));
-        let reach = Reach {
-            region: &region,
-            inner: &inner,
-            avoid: None,
-        };
-        let reaching =
-            generate_reaching(&inner, &settings, reach).unwrap_or_else(|e| panic!("{e}"));
+        let cut = generate_with(&inner, &NORTH_6M).unwrap_or_else(|e| panic!("{e}"));
+        let reaching = reaching_into(&inner, &region);
         let (before, after) = (
             left_standing(&inner_ring, &cut, 6.0),
             left_standing(&inner_ring, &reaching, 6.0),
@@ -1062,19 +1068,7 @@ mod tests {
         let region = MultiPolygon::new(vec![
             polygon![(x: -12., y: -12.), (x: 72., y: -12.), (x: 72., y: 112.), (x: -12., y: 112.)],
         ]);
-        let settings = SwathSettings {
-            bearing: 0.0,
-            width: 6.0,
-            min_length: 6.0,
-            placement: LinePlacement::FromEdge,
-        };
-        let reach = Reach {
-            region: &region,
-            inner: &inner,
-            avoid: None,
-        };
-        let reaching =
-            generate_reaching(&inner, &settings, reach).unwrap_or_else(|e| panic!("{e}"));
+        let reaching = reaching_into(&inner, &region);
         // The line at x = 21 runs 1 m into the hole: cut there, its pieces run on into it as far
         // as the line at x = 19.5 is in the inner field (not at all: the hole's side is at 20).
         let pieces: Vec<(f64, f64)> = reaching

@@ -4,7 +4,9 @@
 
 mod common;
 
-use common::corpus::{fields_dir, invalid_fields, passes_driven, real_parcels, valid_fields};
+use common::corpus::{
+    fields_dir, invalid_fields, passes_driven, real_parcels, strip_out_of_region, valid_fields,
+};
 use furrow::path::SegmentKind;
 use furrow::{plan_geojson, ErrorCode, Plan, PlanOptions};
 use geo::{Area, Contains, Coord, Distance, Euclidean, Point};
@@ -132,7 +134,6 @@ fn check_swaths(plan: &Plan, name: &str) {
         // A swath runs on into the headland as far as the line a quarter width beside its
         // centre is in the inner field, its whole strip in the region (the field less the
         // obstacles with headlands).
-        let region = &plan.headlands.region;
         for at in [
             s.centre.start,
             (s.centre.start + s.centre.end) / 2.0,
@@ -145,20 +146,12 @@ fn check_swaths(plan: &Plan, name: &str) {
                 s.index
             );
         }
-        for (c, a) in [
-            (-1.0, s.along.0),
-            (1.0, s.along.0),
-            (-1.0, s.along.1),
-            (1.0, s.along.1),
-        ] {
-            let corner = Point(s.frame.point(s.across + c * (w / 2.0 - 1e-3), a));
-            let d = Euclidean.distance(&corner, region);
-            assert!(
-                region.contains(&corner) || d < EPS,
-                "{name}: swath {}'s strip reaches {d} m out of the region",
-                s.index
-            );
-        }
+        let out = strip_out_of_region(plan, s);
+        assert!(
+            out < EPS,
+            "{name}: swath {}'s strip reaches {out} m out of the region",
+            s.index
+        );
         let b = furrow::geometry::bearing_of(s.centre.start, s.centre.end);
         let diff = furrow::geometry::swath_direction(b - s.bearing);
         assert!(

@@ -5,7 +5,7 @@
 
 mod common;
 
-use common::corpus::{real_parcels, valid_fields, CorpusField};
+use common::corpus::{real_parcels, strip_out_of_region, valid_fields, CorpusField};
 use furrow::direction::{DirectionMode, SearchMethod};
 use furrow::field::{Field, ProhibitedRegion};
 use furrow::geometry::{bearing_of, forbids_every_direction, swath_direction, BearingRange};
@@ -110,19 +110,10 @@ fn check_swaths(plan: &Plan, name: &str) {
                         "{id} runs on beyond a quarter width of the inner field"
                     );
                 }
-                let region = &plan.headlands.region;
-                for (c, a) in [
-                    (-1.0, s.along.0),
-                    (1.0, s.along.0),
-                    (-1.0, s.along.1),
-                    (1.0, s.along.1),
-                ] {
-                    let corner = Point(s.frame.point(s.across + c * (w / 2.0 - 1e-3), a));
-                    assert!(
-                        region.contains(&corner) || Euclidean.distance(&corner, region) < 1e-3,
-                        "{id}'s strip reaches out of the region"
-                    );
-                }
+                assert!(
+                    strip_out_of_region(plan, s) < 1e-3,
+                    "{id}'s strip reaches out of the region"
+                );
             }
             for hole in &holes {
                 assert!(!line.intersects(*hole), "{id} crosses an obstacle");

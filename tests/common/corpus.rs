@@ -110,3 +110,28 @@ pub fn passes_driven(plan: &furrow::Plan) -> usize {
     steps.dedup();
     steps.len()
 }
+
+/// How far (metres) a swath's strip reaches out of the region its plan measures the headland
+/// from (the field less the obstacles with headlands): the farthest of the strip's four corners,
+/// a millimetre in from its sides; 0 where all four are inside.
+pub fn strip_out_of_region(plan: &furrow::Plan, s: &furrow::swath::Swath) -> f64 {
+    use geo::{Contains, Distance, Euclidean, Point};
+    let half = plan.options.width / 2.0 - 1e-3;
+    let region = &plan.headlands.region;
+    [
+        (-half, s.along.0),
+        (half, s.along.0),
+        (-half, s.along.1),
+        (half, s.along.1),
+    ]
+    .into_iter()
+    .map(|(c, a)| Point(s.frame.point(s.across + c, a)))
+    .map(|p| {
+        if region.contains(&p) {
+            0.0
+        } else {
+            Euclidean.distance(&p, region)
+        }
+    })
+    .fold(0.0, f64::max)
+}
