@@ -3,17 +3,24 @@
 planner's own figure: from the CLI's GeoJSON output with shapely, the footprint of every working
 feature (a strip of the width along it, flat ends, lifted stretches left out) against the parcel,
 in a transverse Mercator projection about the parcel (pyproj). Four machines, as in the table of
-docs/performance.md. The last column counts plans with a connection that drives through at
+docs/performance.md. The last two columns count plans with a connection (of them those with no
+connection_crosses_crop warning) and plans with a turn between swaths that drives through at
 least 1 m of crop the plan works later (not on the headland, not on a strip already worked: see
-crop_crossed); the column before it counts plans whose route (a turn or a connection) runs more
-than 1 m out of the field, and of them those with no warning naming it. Needs `pip install
+crop_crossed); the column before them counts plans whose route (a turn or a connection) runs
+more than 1 m out of the field, and of them those with no warning naming it. Needs `pip install
 shapely pyproj numpy`.
 
 usage: python3 scripts/coverage-table.py BINARY [--parcels DIR] [--json OUT]
   BINARY   the CLI, e.g. target/release/examples/plan (cargo build --release --example plan)
   --parcels a directory of one-parcel GeoJSON files (default: each feature of
            tests/fields/real/*.geojson, written to a temporary directory)
-  --json   every parcel's figures, for comparing two binaries"""
+  --json   every parcel's figures, for comparing two binaries
+
+A second table estimates, for the forward-only machines, what any plan could reach without its
+path leaving the field: the parcel less half a width, opened by the turning disc (a path bent
+no tighter than the turning radius comes no nearer a convex corner), and half a width round
+that. It misses what a path driving straight through a neck narrower than the disc reaches, so
+it errs low there."""
 import json, subprocess, glob, sys, os, math, tempfile
 from concurrent.futures import ThreadPoolExecutor
 from shapely.geometry import shape, LineString, Polygon, MultiPolygon, Point
@@ -53,6 +60,13 @@ def evaluate(path, args, w):
     field = tf(g).buffer(0)
     reach = field.buffer(-w / 2, join_style=1).buffer(w / 2, join_style=1)
     res = {'area': field.area, 'reach': reach.area}
+    if '--reverse' not in args:
+        # What a path bent no tighter than the turning radius reaches without leaving the field:
+        # the field less half a width, opened by the turning disc, and the implement's half
+        # width round that (exact at convex corners; a neck driven straight through is missed).
+        r = float(args[args.index('--turn-radius') + 1])
+        centre = field.buffer(-w / 2, join_style=1).buffer(-r, join_style=1).buffer(r, join_style=1)
+        res['forward_reach'] = centre.buffer(w / 2, join_style=1).intersection(reach).area
     p = subprocess.run([binary, path] + args, capture_output=True, text=True)
     if p.returncode != 0:
         try: res['error'] = json.loads(p.stderr.strip().splitlines()[-1])['code']
@@ -63,14 +77,16 @@ def evaluate(path, args, w):
     worked_at = []  # (sequence, footprint) of every working feature, for the crop crossed
     headland_feet = []
     connections = []
+    turns = []
     out_depth = {'turn': 0.0, 'connection': 0.0}
     for f in plan['features']:
         k = f['properties']['kind']
         if f['geometry']['type'] != 'LineString': continue
         if k in out_depth:
             out_depth[k] = max(out_depth[k], depth_outside(field, tf(shape(f['geometry']))))
-        if k == 'connection':
-            connections.append((f['properties'].get('sequence', 0), tf(shape(f['geometry']))))
+        if k in ('connection', 'turn'):
+            (connections if k == 'connection' else turns).append(
+                (f['properties'].get('sequence', 0), tf(shape(f['geometry']))))
         if not f['properties'].get('working', k in ('swath', 'headland', 'fill')): 
             continue
         line = tf(shape(f['geometry']))
@@ -94,6 +110,7 @@ def evaluate(path, args, w):
     res.update(covered=covered, overlap=max(0.0, total - covered), outside=union.difference(field.buffer(0.05)).area,
                summary_cov=plan['summary'].get('coverage'), turns_outside=plan['summary'].get('turns_outside_field', 0),
                through_crop=crop_crossed(field, headland_feet, worked_at, connections),
+               turns_through_crop=crop_crossed(field, headland_feet, worked_at, turns),
                turn_out_m=out_depth['turn'], connection_out_m=out_depth['connection'],
                warnings=[w['code'] for w in plan.get('warnings', [])])
     return res
@@ -152,10 +169,21 @@ for m in MACHINES:
     outside = sum(1 for r in ok if r['outside'] > 1.0)
     tout = sum(1 for r in ok if r['turns_outside'] > 0)
     crossing = sum(1 for r in ok if r['through_crop'] >= 1.0)
+    crossing_unwarned = sum(1 for r in ok if r['through_crop'] >= 1.0 and 'connection_crosses_crop' not in r['warnings'])
+    turns_crossing = sum(1 for r in ok if r['turns_through_crop'] >= 1.0)
     route_out = sum(1 for r in ok if max(r['turn_out_m'], r['connection_out_m']) > 1.0)
     unwarned = sum(1 for r in ok if unwarned_outside(r))
-    table.append(f"| {name} | {len(refused)} ({len(refused_reach)}) | {100*cov:.1f} % | {100*reach:.2f} % | {100*cov/reach:.1f} % | {100*ge97:.0f} % | {100*lt90:.0f} % | {100*ov:.1f} % | {outside} | {tout} of {len(ok)} | {route_out} ({unwarned}) | {crossing} |")
-print('| machine | refused (of them reachable >= 50 %) | coverage, area-weighted | reachable (limit) | coverage of reachable | parcels >= 97 % of their reachable | parcels < 90 % covered | overlap | plans working > 1 m² outside | plans with turns outside | plans with a turn or connection > 1 m outside (of them not warned of) | plans with a connection through >= 1 m of crop worked later |')
-print('|---|---|---|---|---|---|---|---|---|---|---|---|')
+    table.append(f"| {name} | {len(refused)} ({len(refused_reach)}) | {100*cov:.1f} % | {100*reach:.2f} % | {100*cov/reach:.1f} % | {100*ge97:.0f} % | {100*lt90:.0f} % | {100*ov:.1f} % | {outside} | {tout} of {len(ok)} | {route_out} ({unwarned}) | {crossing} ({crossing_unwarned}) | {turns_crossing} |")
+print('| machine | refused (of them reachable >= 50 %) | coverage, area-weighted | reachable (limit) | coverage of reachable | parcels >= 97 % of their reachable | parcels < 90 % covered | overlap | plans working > 1 m² outside | plans with turns outside | plans with a turn or connection > 1 m outside (of them not warned of) | plans with a connection through >= 1 m of crop worked later (of them not warned of) | plans with a turn through >= 1 m of crop worked later |')
+print('|---|---|---|---|---|---|---|---|---|---|---|---|---|')
 print('\n'.join(table))
+print()
+print('| machine | forward-only estimate: coverage of reachable | parcels >= 97 % of their reachable |')
+print('|---|---|---|')
+for name, results in allres.items():
+    est = [r for _, r in results if 'forward_reach' in r]
+    if est:
+        share = sum(r['forward_reach'] for r in est) / sum(r['reach'] for r in est)
+        ge97 = sum(1 for r in est if r['forward_reach'] >= 0.97 * r['reach']) / len(est)
+        print(f"| {name} | {100*share:.1f} % | {100*ge97:.0f} % |")
 if out_json: json.dump(allres, open(out_json, 'w'))

@@ -282,6 +282,9 @@ pub enum WarningCode {
     /// Some connections leave the field or cross an obstacle: no turn the machine can drive
     /// onto, off or along the headland passes keeps in there.
     ConnectionLeavesField,
+    /// Some connections between blocks drive over crop the plan works later: no turn the
+    /// machine can drive from one block into the next keeps to the headland there.
+    ConnectionCrossesCrop,
     /// The field has too many swaths at this width to search every direction while the user
     /// waits: the swaths run along the longest edge.
     DirectionNotSearched,
@@ -315,6 +318,7 @@ impl WarningCode {
         WarningCode::DirectionNotSearched,
         WarningCode::TurnLeavesField,
         WarningCode::ConnectionLeavesField,
+        WarningCode::ConnectionCrossesCrop,
         WarningCode::OutputCoarsened,
         WarningCode::HeadlandPassesReduced,
     ];
@@ -341,6 +345,7 @@ impl WarningCode {
             WarningCode::DirectionNotSearched => "direction_not_searched",
             WarningCode::TurnLeavesField => "turn_leaves_field",
             WarningCode::ConnectionLeavesField => "connection_leaves_field",
+            WarningCode::ConnectionCrossesCrop => "connection_crosses_crop",
             WarningCode::OutputCoarsened => "output_coarsened",
             WarningCode::HeadlandPassesReduced => "headland_passes_reduced",
         }

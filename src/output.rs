@@ -164,6 +164,10 @@ pub struct Properties {
     /// warnings); `true` on the others.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub inside: Option<bool>,
+    /// `true` on a connection between blocks that drives over crop the plan works later (see
+    /// the `connection_crosses_crop` warning); absent on the others.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub crosses_crop: Option<bool>,
     /// The heading at each point of a drivable feature's line, compass degrees.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub heading_deg: Option<Vec<f64>>,
@@ -300,6 +304,7 @@ impl Plan {
             }
             if seg.kind == SegmentKind::Connection {
                 p.inside = Some(!seg.leaves_field);
+                p.crosses_crop = seg.crosses_crop.then_some(true);
             }
             match seg.step.and_then(|k| self.route.steps.get(k)) {
                 Some(&RouteStep::Swath {

@@ -351,6 +351,95 @@ fn connections_that_leave_the_field_are_flagged_and_warned_of() {
     assert!(flagged > 0, "no connection of the drill leaves the field");
 }
 
+/// Every connection between worked stretches that crosses crop of a swath the path works after
+/// it is flagged (`crosses_crop`) and warned of with its cause; a flagged one does cross some.
+/// The crop, by geo's predicates: the swath's centre line and (on strips over 2 m wide) the
+/// lines a metre in from its strip's sides, all a metre in from its ends. Returns how many are
+/// flagged.
+fn check_connections_crossing(p: &Plan, what: &str) -> usize {
+    use geo::{Intersects, Line};
+    let segments = &p.path.segments;
+    let side = p.options.width / 2.0 - 1.0;
+    // Each swath's lines, by its place in the path.
+    let later_swaths = |from: usize| -> Vec<Line> {
+        segments[from..]
+            .iter()
+            .filter(|s| s.kind == SegmentKind::Swath)
+            .filter_map(|s| match s.step.and_then(|k| p.route.steps.get(k)) {
+                Some(&furrow::route::RouteStep::Swath { swath, .. }) => p.swaths.swaths.get(swath),
+                _ => None,
+            })
+            .filter(|w| w.length() > 0.0)
+            .flat_map(|w| {
+                let d = (w.centre.end - w.centre.start) / w.length();
+                let cut = d * 1f64.min(w.length() / 4.0);
+                let (a, b) = (w.centre.start + cut, w.centre.end - cut);
+                let n = geo::coord! { x: -d.y, y: d.x } * side;
+                let mut lines = vec![Line::new(a, b)];
+                if side > 0.0 {
+                    lines.extend([Line::new(a + n, b + n), Line::new(a - n, b - n)]);
+                }
+                lines
+            })
+            .collect()
+    };
+    let between = segments.len().saturating_sub(1);
+    let mut flagged = 0;
+    for (k, c) in segments.iter().enumerate() {
+        if c.kind != SegmentKind::Connection || k == 0 || k >= between {
+            assert!(!c.crosses_crop, "{what}: segment {k} is flagged");
+            continue;
+        }
+        let crossing = later_swaths(k + 1).iter().any(|l| l.intersects(&c.line));
+        assert_eq!(
+            c.crosses_crop, crossing,
+            "{what}: connection {k} crosses a swath worked later: {crossing}"
+        );
+        flagged += usize::from(c.crosses_crop);
+    }
+    let warned = p
+        .warnings
+        .iter()
+        .find(|w| w.code == WarningCode::ConnectionCrossesCrop);
+    match warned {
+        None => assert_eq!(flagged, 0, "{what}: connections cross crop unreported"),
+        Some(w) => {
+            assert!(flagged > 0, "{what}: warned of no connection");
+            assert!(
+                w.message.contains(&flagged.to_string()),
+                "{what}: {}",
+                w.message
+            );
+            assert!(
+                w.message.contains("turning radius"),
+                "{what}: {}",
+                w.message
+            );
+        }
+    }
+    flagged
+}
+
+#[test]
+fn connections_over_crop_worked_later_are_flagged_and_warned_of() {
+    let drill = PlanOptions {
+        width: 6.0,
+        headland_passes: furrow::headland::passes::HeadlandPasses::Count(2),
+        turn_radius: 8.0,
+        ..PlanOptions::default()
+    };
+    let mut flagged = 0;
+    for field in valid_fields() {
+        for (machine, options) in machines(&field.options) {
+            let what = format!("{} ({machine})", field.name);
+            check_connections_crossing(&plan(&field.text(), &options, &what), &what);
+        }
+        let what = format!("{} (drill)", field.name);
+        flagged += check_connections_crossing(&plan(&field.text(), &drill, &what), &what);
+    }
+    assert!(flagged > 0, "no connection of the drill crosses crop");
+}
+
 #[test]
 fn the_path_follows_the_route_and_turns_cost_what_they_are() {
     // The rectangle: the path's working distance is the route's (swaths and headland passes

@@ -304,6 +304,8 @@ export interface PlanFeatureProperties {
   word?: string;
   /** Turns and connections: `false` where it leaves the field or crosses an obstacle (see the `turn_leaves_field` and `connection_leaves_field` warnings). */
   inside?: boolean;
+  /** Connections: `true` where it drives over crop the plan works later (see the `connection_crosses_crop` warning); absent elsewhere. */
+  crosses_crop?: boolean;
   /** Drivable features: the heading at each point of the line, compass degrees. */
   heading_deg?: number[];
   /** Drivable features: the steering curvature at each point, 1/m, positive to the left. */
@@ -557,6 +559,7 @@ export type WarningCode =
   | "direction_not_searched"
   | "turn_leaves_field"
   | "connection_leaves_field"
+  | "connection_crosses_crop"
   | "output_coarsened"
   | "headland_passes_reduced";
 

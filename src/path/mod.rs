@@ -13,11 +13,14 @@
 //!   the field ([`turn`]: Dubins, Reeds-Shepp, three-point, continuous-curvature); turns that
 //!   cannot stay in are kept, marked and counted;
 //! - a connection follows the route's line along the headland, joined to the poses at either
-//!   end by the vehicle's cheapest turn that stays in the field (where one does).
+//!   end by the vehicle's cheapest turn that stays in the field (where one does) and off the crop
+//!   of the swaths worked later (where one does, [`crop`]); between near poses it is one such
+//!   turn, unless only the way along the line keeps off that crop.
 //!
 //! [`sample`] gives the path as points at a set spacing, for drawing and guidance.
 
 pub mod continuous;
+pub mod crop;
 pub mod curve;
 pub mod dubins;
 pub mod follow;
@@ -32,6 +35,7 @@ use crate::geometry::PlanarHypot;
 use crate::headland::HeadlandPass;
 use crate::route::{nearest_on_ring, Route, RouteStep};
 use crate::swath::Swaths;
+use crop::StandingCrop;
 use curve::{Gear, Pose, Segment};
 use follow::{follow, follow_in, follow_round_in, Manoeuvre};
 use geo::{Coord, Euclidean, Length, LineString};
@@ -102,6 +106,10 @@ pub struct PathSegment {
     /// whether it leaves the field or crosses an obstacle (no turn the machine can drive onto,
     /// off or along the headland passes keeps in there).
     pub leaves_field: bool,
+    /// For a connection between two worked stretches: whether it drives over crop the route
+    /// works later ([`crop`]: no turn the machine can drive onto, off or along the headland
+    /// keeps off it).
+    pub crosses_crop: bool,
 }
 
 impl PathSegment {
@@ -140,6 +148,7 @@ impl PathSegment {
             step,
             turn: None,
             leaves_field: false,
+            crosses_crop: false,
         }
     }
 
@@ -280,13 +289,29 @@ pub fn build_path(
             block,
             into,
             ring,
+            step: k,
         });
     }
+    // The crop matters to the connections before the last swath; it is laid out when the
+    // first of them is.
+    let last_swath = route
+        .steps
+        .iter()
+        .rposition(|s| matches!(s, RouteStep::Swath { .. }));
+    let standing = std::cell::OnceCell::new();
     let mut segments: Vec<PathSegment> = Vec::with_capacity(worked.len() * 2 + 2);
     let mut previous: Option<(Pose, Option<usize>)> = None;
     for mut w in worked {
         let Some(start) = w.segments.first().and_then(PathSegment::start) else {
             continue;
+        };
+        // Only connections before the last swath can cross crop worked later.
+        let crop = || match (area, last_swath) {
+            (Some(_), Some(last)) if w.step <= last => Some((
+                standing.get_or_init(|| StandingCrop::of_route(route, swaths)),
+                w.step,
+            )),
+            _ => None,
         };
         match previous {
             Some((from, from_block)) => {
@@ -295,12 +320,17 @@ pub fn build_path(
                     if let Some(t) = swath_turn(from, start, vehicle, area) {
                         segments.push(t);
                     }
-                } else if let Some(c) =
-                    connection(Some(from), Some(start), w.into.as_ref(), vehicle, area)
-                {
+                } else if let Some(c) = connection(
+                    Some(from),
+                    Some(start),
+                    w.into.as_ref(),
+                    vehicle,
+                    area,
+                    crop(),
+                ) {
                     match c
                         .leaves_field
-                        .then(|| the_other_way(&w, from, vehicle, area))
+                        .then(|| the_other_way(&w, from, vehicle, area, crop()))
                     {
                         Some(Some((c, pass))) => {
                             segments.push(c);
@@ -312,7 +342,8 @@ pub fn build_path(
             }
             None => {
                 // From the entrance: along the route's line into the first pose.
-                if let Some(c) = connection(None, Some(start), w.into.as_ref(), vehicle, area) {
+                if let Some(c) = connection(None, Some(start), w.into.as_ref(), vehicle, area, None)
+                {
                     segments.push(c);
                 }
             }
@@ -325,7 +356,15 @@ pub fn build_path(
         segments.extend(w.segments);
     }
     if let Some(c) = &route.finish {
-        if let Some(f) = connection(previous.map(|p| p.0), None, Some(&c.line), vehicle, area) {
+        let to_exit = connection(
+            previous.map(|p| p.0),
+            None,
+            Some(&c.line),
+            vehicle,
+            area,
+            None,
+        );
+        if let Some(f) = to_exit {
             segments.push(f);
         }
     }
@@ -340,6 +379,8 @@ struct Worked {
     into: Option<LineString>,
     /// A closed pass: its ring as driven (from where it is entered) and its route step.
     ring: Option<(Vec<Coord>, usize)>,
+    /// Its route step.
+    step: usize,
 }
 
 /// A closed pass whose connection from `from` leaves the field, driven round the other way: the
@@ -350,6 +391,7 @@ fn the_other_way(
     from: Pose,
     v: &Vehicle,
     area: Option<&Area>,
+    crop: Option<(&StandingCrop, usize)>,
 ) -> Option<(PathSegment, Vec<PathSegment>)> {
     let (ring, step) = w.ring.as_ref()?;
     let reversed: Vec<Coord> = ring.iter().rev().copied().collect();
@@ -359,7 +401,7 @@ fn the_other_way(
         .iter()
         .find(|q| (q.x - first.x).planar_hypot(q.y - first.y) > 1e-6)?;
     let onto = Pose::new(first.x, first.y, (next.y - first.y).atan2(next.x - first.x));
-    let mut c = connection(Some(from), Some(onto), w.into.as_ref(), v, area)?;
+    let mut c = connection(Some(from), Some(onto), w.into.as_ref(), v, area, crop)?;
     if c.leaves_field {
         return None;
     }
@@ -377,7 +419,7 @@ fn the_other_way(
     }
     let start = pass.first().and_then(PathSegment::start)?;
     if start.distance(&onto) > 1e-9 || start.heading_change(&onto).abs() > 1e-9 {
-        c = connection(Some(from), Some(start), w.into.as_ref(), v, area)?;
+        c = connection(Some(from), Some(start), w.into.as_ref(), v, area, crop)?;
     }
     (!c.leaves_field).then_some((c, pass))
 }
@@ -449,83 +491,137 @@ fn swath_turn(from: Pose, to: Pose, v: &Vehicle, area: Option<&Area>) -> Option<
 /// A connection from `from` (or the line's first point) to `to` (or its last point) along
 /// `line`: the line's middle followed with its corners rounded, joined to the end poses by the
 /// vehicle's cheapest turns onto it (each at the point along the line where joining costs least).
-/// Short lines, and none, give one turn between the poses.
+/// Short lines, and none, give one turn between the poses, unless that turn leaves the field or
+/// crosses `crop` (the crop standing before that route step) and the way along the line does not.
+/// Every join keeps in the field and off the crop where a form of turn does.
 fn connection(
     from: Option<Pose>,
     to: Option<Pose>,
     line: Option<&LineString>,
     v: &Vehicle,
     area: Option<&Area>,
+    crop: Option<(&StandingCrop, usize)>,
 ) -> Option<PathSegment> {
-    // A join between two poses: the cheapest turn that stays in the field where one does
-    // (noted where none does).
+    // Most connections keep off the crop as they are: only those that do not are made again
+    // minding it (the same connection where the first keeps off it), and the second kept
+    // unless it leaves the field where the first did not.
+    let mut c = connection_minding(from, to, line, v, area, None)?;
+    let between = from.is_some() && to.is_some();
+    if let (true, Some((standing, step))) = (between, crop) {
+        if standing.crossed(&c.pieces, step) {
+            match connection_minding(from, to, line, v, area, crop) {
+                Some(minding) if minding.leaves_field <= c.leaves_field => c = minding,
+                _ => {}
+            }
+            c.crosses_crop = standing.crossed(&c.pieces, step);
+        }
+    }
+    Some(c)
+}
+
+/// [`connection`], minding `crop` throughout where it is given.
+fn connection_minding(
+    from: Option<Pose>,
+    to: Option<Pose>,
+    line: Option<&LineString>,
+    v: &Vehicle,
+    area: Option<&Area>,
+    crop: Option<(&StandingCrop, usize)>,
+) -> Option<PathSegment> {
+    let clear = |s: &[Segment]| crop.is_none_or(|(c, step)| !c.crossed(s, step));
+    // A join between two poses: the cheapest turn that stays in the field and off the crop
+    // where one does (noted where none stays in the field).
     let leaves = std::cell::Cell::new(false);
     let join = |a: Pose, b: Pose| match area {
         Some(ar) => {
-            let t = v.turn(a, b, ar);
+            let (t, _) = v.turn_clear(a, b, ar, &clear);
             leaves.set(leaves.get() || !t.inside);
             t
         }
         None => v.shortest(a, b),
     };
     // What a join costs when choosing where to join: leaving the field costs more than any
-    // detour along the line.
-    let join_cost = |t: &turn::Turn| t.cost() + if t.inside || area.is_none() { 0.0 } else { 1e6 };
+    // detour along the line, crossing crop more than any but a long one.
+    let join_cost = |(t, kept_off): (turn::Turn, bool)| {
+        let out = if t.inside || area.is_none() { 0.0 } else { 1e6 };
+        let through = if kept_off || crop.is_none() {
+            0.0
+        } else {
+            CROP_CROSSING_COST_M
+        };
+        t.cost() + out + through
+    };
     // The same, where only a cost below `limit` matters (any answer at or above it will do):
     // a join whose cheapest form costs more is not checked against the field.
     let join_cost_below = |a: Pose, b: Pose, limit: f64| match area {
         Some(ar) => v
-            .turn_below(a, b, ar, limit)
-            .map_or(f64::INFINITY, |t| join_cost(&t)),
+            .turn_clear_below(a, b, ar, &clear, limit)
+            .map_or(f64::INFINITY, join_cost),
         None => v.shortest(a, b).cost(),
     };
     let pts: Vec<Coord> = line.map(|l| l.0.clone()).unwrap_or_default();
     let length = polyline_length(&pts);
+    // Along the line, joined at either end.
+    let along_line = || -> Option<Vec<Segment>> {
+        // Where to leave the line's start and end: the join that costs least over what it
+        // saves of the line.
+        let half = length / 2.0;
+        let start_at = from.map_or(0.0, |a| {
+            best_join(&pts, half, v, |p, limit| join_cost_below(a, p, limit), true)
+        });
+        let end_at = to.map_or(0.0, |b| {
+            best_join(
+                &pts,
+                half,
+                v,
+                |p, limit| join_cost_below(p, b, limit),
+                false,
+            )
+        });
+        let middle = cut_polyline(&pts, start_at, length - end_at);
+        let mut along = follow(&middle, v);
+        // The joins are checked as they are chosen; the line followed between them here.
+        leaves.set(area.is_some_and(|a| !along.is_empty() && !a.contains(&along)));
+        if along.is_empty() {
+            let (Some(a), Some(b)) = (from, to) else {
+                return None;
+            };
+            along = join(a, b).segments;
+        } else {
+            if let (Some(a), Some(m0)) = (from, along.first().map(|s| s.start)) {
+                let mut pieces = join(a, m0).segments;
+                pieces.append(&mut along);
+                along = pieces;
+            }
+            if let (Some(b), Some(m1)) = (to, curve::end(&along)) {
+                along.extend(join(m1, b).segments);
+            }
+        }
+        Some(along)
+    };
     let direct = length < DIRECT_CONNECTION_RADII * v.turn_radius;
     let pieces = match (from, to) {
         (Some(a), Some(b)) if direct || pts.len() < 2 => {
             if a.distance(&b) < MIN_CONNECTOR_M && a.heading_change(&b).abs() < 1e-9 {
                 return None;
             }
-            join(a, b).segments
-        }
-        _ => {
-            // Where to leave the line's start and end: the join that costs least over what it
-            // saves of the line.
-            let half = length / 2.0;
-            let start_at = from.map_or(0.0, |a| {
-                best_join(&pts, half, v, |p, limit| join_cost_below(a, p, limit), true)
-            });
-            let end_at = to.map_or(0.0, |b| {
-                best_join(
-                    &pts,
-                    half,
-                    v,
-                    |p, limit| join_cost_below(p, b, limit),
-                    false,
-                )
-            });
-            let middle = cut_polyline(&pts, start_at, length - end_at);
-            let mut along = follow(&middle, v);
-            // The joins are checked as they are chosen; the line followed between them here.
-            leaves.set(area.is_some_and(|a| !along.is_empty() && !a.contains(&along)));
-            if along.is_empty() {
-                match (from, to) {
-                    (Some(a), Some(b)) => along = join(a, b).segments,
-                    _ => return None,
-                }
-            } else {
-                if let (Some(a), Some(m0)) = (from, along.first().map(|s| s.start)) {
-                    let mut pieces = join(a, m0).segments;
-                    pieces.append(&mut along);
-                    along = pieces;
-                }
-                if let (Some(b), Some(m1)) = (to, curve::end(&along)) {
-                    along.extend(join(m1, b).segments);
+            let turn = join(a, b);
+            let direct_left = (leaves.get(), !clear(&turn.segments));
+            match (pts.len() >= 2 && direct_left != (false, false))
+                .then(|| {
+                    leaves.set(false);
+                    along_line()
+                })
+                .flatten()
+            {
+                Some(along) if (leaves.get(), !clear(&along)) < direct_left => along,
+                _ => {
+                    leaves.set(direct_left.0);
+                    turn.segments
                 }
             }
-            along
         }
+        _ => along_line()?,
     };
     let pieces: Vec<Segment> = pieces.into_iter().filter(|p| p.length > 1e-12).collect();
     if pieces.is_empty() {
@@ -537,6 +633,10 @@ fn connection(
     segment.leaves_field = from.is_some() && to.is_some() && leaves.get();
     Some(segment)
 }
+
+/// What crossing crop still to be worked adds to a join's cost when choosing where along a
+/// connection's line to join it (metres): more than the detours along a headland take.
+const CROP_CROSSING_COST_M: f64 = 1e4;
 
 /// Distances along a connection's line (in turning radii) at which a join from the pose before
 /// (or to the pose after) is tried.

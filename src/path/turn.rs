@@ -279,21 +279,73 @@ impl Vehicle {
         Some(self.first_inside(candidates, from, to, area))
     }
 
+    /// [`Vehicle::turn`] that also keeps `clear` where a form inside the area does: the
+    /// cheapest form inside the area for which `clear` holds, else the cheapest inside (for
+    /// example a turn that must cross crop still to be worked, see [`super::crop`]); with
+    /// whether `clear` holds for it (`false` for a turn that leaves the area, not asked).
+    pub fn turn_clear(
+        &self,
+        from: Pose,
+        to: Pose,
+        area: &Area,
+        clear: &dyn Fn(&[Segment]) -> bool,
+    ) -> (Turn, bool) {
+        self.first_inside_where(self.candidates(from, to), from, to, area, clear)
+    }
+
+    /// [`Vehicle::turn_clear`], but only if it may cost less than `limit` (see
+    /// [`Vehicle::turn_below`]).
+    pub fn turn_clear_below(
+        &self,
+        from: Pose,
+        to: Pose,
+        area: &Area,
+        clear: &dyn Fn(&[Segment]) -> bool,
+        limit: f64,
+    ) -> Option<(Turn, bool)> {
+        let candidates = self.candidates(from, to);
+        if candidates.first().is_some_and(|t| t.cost() >= limit) {
+            return None;
+        }
+        Some(self.first_inside_where(candidates, from, to, area, clear))
+    }
+
     /// The first of `candidates` (cheapest first) inside `area`, or the cheapest of all with
     /// `inside: false`.
     fn first_inside(&self, candidates: Vec<Turn>, from: Pose, to: Pose, area: &Area) -> Turn {
+        self.first_inside_where(candidates, from, to, area, &|_| true)
+            .0
+    }
+
+    /// The first of `candidates` (cheapest first) inside `area` for which `clear` holds, else
+    /// the first inside, else the cheapest of all with `inside: false`; with whether `clear`
+    /// holds for it.
+    fn first_inside_where(
+        &self,
+        candidates: Vec<Turn>,
+        from: Pose,
+        to: Pose,
+        area: &Area,
+        clear: &dyn Fn(&[Segment]) -> bool,
+    ) -> (Turn, bool) {
         let mut first: Option<Turn> = None;
+        let mut first_inside: Option<Turn> = None;
         for mut t in candidates {
             if area.contains(&t.segments) {
                 t.inside = true;
-                return t;
-            }
-            if first.is_none() {
+                if clear(&t.segments) {
+                    return (t, true);
+                }
+                if first_inside.is_none() {
+                    first_inside = Some(t);
+                }
+            } else if first.is_none() {
                 t.inside = false;
                 first = Some(t);
             }
         }
-        first.unwrap_or_else(|| straight(from, to))
+        let t = first_inside.or(first).unwrap_or_else(|| straight(from, to));
+        (t, false)
     }
 
     /// Tangent length of a corner of `deflection` radians rounded at the vehicle's limits: how
@@ -470,10 +522,36 @@ impl Area {
         })
     }
 
+    /// Lines as the edges of an area, each `(start, end, tag)`: a run of segments that crosses
+    /// none of those tagged `from` or later is [`Area::crosses_none_from`] them (the swaths
+    /// still to be worked, tagged by the step of the route that works them, see
+    /// [`super::crop`]).
+    pub fn of_lines(lines: impl IntoIterator<Item = (Coord, Coord, usize)>) -> Self {
+        let edges = lines
+            .into_iter()
+            .filter(|(a, b, _)| a != b)
+            .map(|(a, b, tag)| Edge::new(a, b, tag, 0))
+            .collect();
+        Area {
+            edges: RTree::bulk_load(edges),
+        }
+    }
+
     /// Whether a run of segments that starts inside stays inside: none of its chords crosses
     /// an edge. The tree is asked once, for the edges near the run (each segment stays within
     /// its length of its start); a run near no edge is inside without a chord drawn.
     pub fn contains(&self, segments: &[Segment]) -> bool {
+        self.crosses_none_from(segments, 0)
+    }
+
+    /// Whether none of the chords of a run of segments crosses an edge tagged `from` or later
+    /// ([`Area::of_lines`]; the edges of [`Area::new`] are all tagged 0).
+    pub fn crosses_none_from(&self, segments: &[Segment], from: usize) -> bool {
+        self.crosses_none_within(segments, from, CHORD_TOLERANCE_M)
+    }
+
+    /// [`Area::crosses_none_from`], the chords within `tolerance` metres of the segments.
+    pub fn crosses_none_within(&self, segments: &[Segment], from: usize, tolerance: f64) -> bool {
         let mut low = [f64::INFINITY; 2];
         let mut high = [f64::NEG_INFINITY; 2];
         for s in segments {
@@ -487,6 +565,7 @@ impl Area {
         let near: Vec<Line> = self
             .edges
             .locate_in_envelope_intersecting(&AABB::from_corners(low, high))
+            .filter(|e| e.line >= from)
             .map(Edge::as_line)
             .collect();
         if near.is_empty() {
@@ -495,7 +574,7 @@ impl Area {
         let mut previous: Option<Coord> = None;
         let mut beside: Vec<Line> = Vec::with_capacity(near.len());
         for s in segments {
-            let n = chord_count(s);
+            let n = chords_within(s, tolerance);
             let poses = s.poses();
             let point = |i: usize| {
                 let p = poses.at(chord_distance(s, i, n));
@@ -510,7 +589,7 @@ impl Area {
                     beside.clear();
                     beside.extend(
                         near.iter()
-                            .filter(|e| reaches_ring(e, centre, radius - CHORD_TOLERANCE_M, radius))
+                            .filter(|e| reaches_ring(e, centre, radius - tolerance, radius))
                             .copied(),
                     );
                     if beside.is_empty() {
@@ -617,11 +696,6 @@ pub fn chord_poses_within(s: &Segment, tolerance: f64) -> impl Iterator<Item = (
         .map(move |(p, at)| (p, s.curvature_at(at)))
 }
 
-/// The number of chords [`chord_points`] divides a segment into.
-fn chord_count(s: &Segment) -> usize {
-    chords_within(s, CHORD_TOLERANCE_M)
-}
-
 /// The number of chords within `tolerance` metres of a segment (1 for a line): a chord of
 /// length `c` on a curve of curvature `k` falls `c² k / 8` short of it.
 pub fn chords_within(s: &Segment, tolerance: f64) -> usize {
@@ -673,6 +747,36 @@ mod tests {
     use geo::polygon;
     use proptest::prelude::*;
     use std::f64::consts::PI;
+
+    #[test]
+    fn a_turn_keeps_off_what_clear_rules_out_where_a_form_does() {
+        let v = Vehicle {
+            turn_radius: 5.0,
+            ..Vehicle::default()
+        };
+        let field =
+            polygon![(x: -50., y: -50.), (x: 50., y: -50.), (x: 50., y: 50.), (x: -50., y: 50.)];
+        let area = Area::new(&field, &[]);
+        // A U-turn to the left, 20 m across: the cheapest (LSL) runs north along x = 5, across a
+        // line from (2, 10) to (8, 10) worked at step 1.
+        let crop = Area::of_lines([(Coord { x: 2.0, y: 10.0 }, Coord { x: 8.0, y: 10.0 }, 1)]);
+        let (from, to) = (Pose::new(0.0, 0.0, 0.0), Pose::new(0.0, 20.0, PI));
+        let cheapest = v.turn(from, to, &area);
+        assert!(!crop.crosses_none_from(&cheapest.segments, 1));
+        // Before step 1 the line is crop: the turn takes the way round the other side.
+        let (clear, kept_off) = v.turn_clear(from, to, &area, &|s| crop.crosses_none_from(s, 1));
+        assert!(clear.inside && kept_off);
+        assert!(crop.crosses_none_from(&clear.segments, 1));
+        assert!(clear.cost() > cheapest.cost());
+        // After step 1 it is worked: nothing to keep off.
+        assert!(crop.crosses_none_from(&cheapest.segments, 2));
+        let (after, _) = v.turn_clear(from, to, &area, &|s| crop.crosses_none_from(s, 2));
+        assert_eq!(after.form, cheapest.form);
+        // Where no form keeps off it, the cheapest inside the field.
+        let (everything, kept_off) = v.turn_clear(from, to, &area, &|_| false);
+        assert_eq!(everything.form, cheapest.form);
+        assert!(everything.inside && !kept_off);
+    }
 
     /// [`Area::contains`] without the ring check: every chord against every edge.
     fn contains_chord_by_chord(area: &Area, segments: &[Segment]) -> bool {

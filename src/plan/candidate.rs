@@ -17,7 +17,7 @@ use crate::geometry::{forbids_every_direction, SweepFrame};
 use crate::headland::offset::inset;
 use crate::headland::{HeadlandPass, Headlands, PassAround};
 use crate::metrics::{summarise, DirectionFigures, DirectionReport, StageTimes, Summary};
-use crate::numbers::Decimals;
+use crate::numbers::{Decimals, Shortest};
 use crate::objective::{measure_all, Machine, ObjectiveValues};
 use crate::obstacles::ObstacleClass;
 use crate::options::PlanOptions;
@@ -207,6 +207,7 @@ pub(super) fn fill_leftovers(
             WarningCode::StraightConnections
                 | WarningCode::TurnLeavesField
                 | WarningCode::ConnectionLeavesField
+                | WarningCode::ConnectionCrossesCrop
         )
     });
     let (route, path, summary) = route_and_path(prep, &laid, &blocks, None, &mut warnings, times)?;
@@ -268,6 +269,7 @@ fn route_and_path(
     times.lap(&mut clock, |t| &mut t.path);
     warnings.extend(turns_leaving(path, prep.options));
     warnings.extend(connections_leaving(path, prep.options));
+    warnings.extend(connections_crossing(path, prep.options));
     let summary = measure(prep, laid, blocks, &route, path, prep.options.machine());
     times.lap(&mut clock, |t| &mut t.metrics);
     Ok((route, built, summary))
@@ -577,6 +579,33 @@ fn connections_leaving(path: &Path, options: &PlanOptions) -> Option<Warning> {
             "{} the field or cross an obstacle: no turn the machine can drive onto, off or along the headland passes keeps within a headland {} m deep there{hint}",
             leave(outside, "connection"),
             Decimals(options.headland_pass_count() as f64 * options.width, 1)
+        ),
+    ))
+}
+
+/// The warning for the connections between blocks that drive over crop the plan works later,
+/// with their cause.
+fn connections_crossing(path: &Path, options: &PlanOptions) -> Option<Warning> {
+    let crossing = path.segments.iter().filter(|s| s.crosses_crop).count();
+    if crossing == 0 {
+        return None;
+    }
+    let what = if crossing == 1 {
+        "1 connection between blocks drives".to_string()
+    } else {
+        format!("{crossing} connections between blocks drive")
+    };
+    let hint = if options.reverse {
+        ""
+    } else {
+        "; allowing the machine to reverse may let it turn within the headland"
+    };
+    Some(Warning::new(
+        WarningCode::ConnectionCrossesCrop,
+        format!(
+            "{what} over crop the plan works later (crosses_crop on the connection): no turn the machine can drive from one block into the next keeps to a headland {} m deep with a turning radius of {} m{hint}",
+            Decimals(options.headland_pass_count() as f64 * options.width, 1),
+            Shortest(options.turn_radius)
         ),
     ))
 }

@@ -31,6 +31,7 @@ mod on_the_way;
 pub mod pattern;
 mod ring;
 pub mod sequence;
+mod turn_floor;
 
 pub use ring::nearest_on_ring;
 
@@ -44,6 +45,7 @@ use headland_graph::{HeadlandGraph, CROSSING_PENALTY_M};
 use on_the_way::OnTheWay;
 use pattern::{ways, BlockWay, SwathOrder};
 use sequence::{SequenceMethod, SequenceProblem, Way};
+use turn_floor::{facing_out, turn_floor};
 
 /// One step of a route.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -307,15 +309,13 @@ pub fn plan_route_on(
         } else {
             (graph, finish_on_headland)
         };
-        let (solution, chosen_ways) = sequence_blocks(
-            &group_ways,
-            s,
-            position,
-            on,
-            &unlimited,
+        let between = Between {
+            graph: on,
+            unlimited: &unlimited,
             finish_on_headland,
-            settings.seed,
-        );
+            settings,
+        };
+        let (solution, chosen_ways) = sequence_blocks(&group_ways, s, position, &between);
         if fill {
             fill_at = order.len();
         }
@@ -515,11 +515,9 @@ fn sequence_blocks(
     block_ways: &[Vec<BlockWay>],
     s: &[crate::swath::Swath],
     position: Option<Coord>,
-    graph: &HeadlandGraph,
-    unlimited: &[usize],
-    finish_on_headland: bool,
-    seed: u64,
+    between: &Between<'_>,
 ) -> (sequence::Sequence, Vec<Vec<(usize, bool)>>) {
+    let seed = between.settings.seed;
     let ways: usize = block_ways.iter().map(Vec::len).sum();
     if ways > nearest::MAX_SEQUENCED_WAYS {
         let own = block_ways
@@ -528,30 +526,14 @@ fn sequence_blocks(
             .collect();
         return (nearest::nearest_order(block_ways, s, position), own);
     }
-    let plain = build_problem(
-        block_ways,
-        s,
-        position,
-        graph,
-        unlimited,
-        false,
-        finish_on_headland,
-    );
+    let plain = build_problem(block_ways, s, position, between, false);
     let solution = sequence::solve(&plain.problem, seed);
     if solution.cost < CROSSING_PENALTY_M {
         return (solution, plain.ways);
     }
     // Some block leaves the machine where the headland offers no way on: let a block also end
     // by driving back along its last swath, worked by then, to its other end.
-    let returning = build_problem(
-        block_ways,
-        s,
-        position,
-        graph,
-        unlimited,
-        true,
-        finish_on_headland,
-    );
+    let returning = build_problem(block_ways, s, position, between, true);
     let second = sequence::solve(&returning.problem, seed);
     if second.cost < solution.cost {
         (second, returning.ways)
@@ -613,16 +595,24 @@ pub fn block_sequence_problem(
     );
     let unlimited: Vec<usize> = if position.is_some() { vec![0] } else { vec![] };
     let finish_on_headland = finishes_on_headland(&graph, passes, settings);
-    build_problem(
-        &block_ways,
-        &swaths.swaths,
-        position,
-        &graph,
-        &unlimited,
-        false,
+    let between = Between {
+        graph: &graph,
+        unlimited: &unlimited,
         finish_on_headland,
-    )
-    .problem
+        settings,
+    };
+    build_problem(&block_ways, &swaths.swaths, position, &between, false).problem
+}
+
+/// What the connections of the block sequence problem go by: the headland graph, the points
+/// that join it from anywhere (of index in `unlimited`), whether the work finishes on the
+/// headland, and the route's settings (the machine's turns between near blocks).
+#[derive(Clone, Copy)]
+struct Between<'a> {
+    graph: &'a HeadlandGraph,
+    unlimited: &'a [usize],
+    finish_on_headland: bool,
+    settings: &'a RouteSettings,
 }
 
 /// The block sequence problem, and for each block and way of the problem the way of the block
@@ -640,11 +630,15 @@ fn build_problem(
     block_ways: &[Vec<BlockWay>],
     s: &[crate::swath::Swath],
     position: Option<Coord>,
-    graph: &HeadlandGraph,
-    unlimited: &[usize],
+    between: &Between<'_>,
     returning: bool,
-    finish_on_headland: bool,
 ) -> Problem {
+    let Between {
+        graph,
+        unlimited,
+        finish_on_headland,
+        settings,
+    } = *between;
     let mut points: Vec<Coord> = vec![position.unwrap_or_default()];
     let mut problem_ways: Vec<Vec<Way>> = Vec::with_capacity(block_ways.len());
     let mut ways: Vec<Vec<(usize, bool)>> = Vec::with_capacity(block_ways.len());
@@ -694,6 +688,7 @@ fn build_problem(
         is_entry[w.entry] = true;
     }
     let entries: Vec<usize> = (0..n).filter(|&i| is_entry[i]).collect();
+    let facing = facing_out(&points, s);
     let mut connection = vec![CROSSING_PENALTY_M * 10.0; n * n];
     let mut from_start = vec![0.0; n];
     // Where the blocks end the machine drives on to the headland passes or the exit: an exit
@@ -714,10 +709,19 @@ fn build_problem(
         }
         let d = connections.distances(from, &entries);
         for (&to, d) in entries.iter().zip(d) {
-            let cost = d.unwrap_or_else(|| {
-                let v = points[to] - points[from];
-                v.x.planar_hypot(v.y) + CROSSING_PENALTY_M
-            });
+            let cost = match d {
+                Some(d) if start => d,
+                Some(d) => d.max(turn_floor(
+                    (points[from], facing[from]),
+                    (points[to], facing[to]),
+                    d,
+                    settings.turn_radius,
+                )),
+                None => {
+                    let v = points[to] - points[from];
+                    v.x.planar_hypot(v.y) + CROSSING_PENALTY_M
+                }
+            };
             if start {
                 from_start[to] = cost;
             } else {
@@ -966,6 +970,7 @@ fn distance(a: Coord, b: Coord) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
     use crate::decompose::cluster_swaths;
     use crate::headland::{HeadlandOrder, HeadlandPass};
     use crate::swath::generate;
