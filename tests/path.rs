@@ -17,6 +17,16 @@ fn plan(text: &str, options: &PlanOptions, name: &str) -> Plan {
     plan_geojson(text, options).unwrap_or_else(|e| panic!("{name}: {e}"))
 }
 
+/// A 6 m drill with two passes turning at 8 m, forward only.
+fn drill() -> PlanOptions {
+    PlanOptions {
+        width: 6.0,
+        headland_passes: furrow::headland::passes::HeadlandPasses::Count(2),
+        turn_radius: 8.0,
+        ..PlanOptions::default()
+    }
+}
+
 /// The machines every field is planned for.
 fn machines(base: &PlanOptions) -> Vec<(&'static str, PlanOptions)> {
     vec![
@@ -305,20 +315,25 @@ fn check_connections_leaving(p: &Plan, what: &str) {
     }
     let flagged = connections.iter().filter(|c| c.leaves_field).count();
     assert_eq!(flagged, p.summary.connections_outside_field, "{what}");
-    let warned = p
-        .warnings
-        .iter()
-        .find(|w| w.code == WarningCode::ConnectionLeavesField);
-    match warned {
-        None => assert_eq!(flagged, 0, "{what}: connections leave unreported"),
+    check_warned(
+        p,
+        WarningCode::ConnectionLeavesField,
+        flagged,
+        "headland",
+        what,
+    );
+}
+
+/// The plan warns (`code`) exactly where `flagged` connections are flagged, with their count
+/// and `cause` in the message.
+fn check_warned(p: &Plan, code: WarningCode, flagged: usize, cause: &str, what: &str) {
+    match p.warnings.iter().find(|w| w.code == code) {
+        None => assert_eq!(flagged, 0, "{what}: {flagged} flagged, no warning"),
         Some(w) => {
             assert!(flagged > 0, "{what}: warned of no connection");
-            assert!(
-                w.message.contains(&flagged.to_string()),
-                "{what}: {}",
-                w.message
-            );
-            assert!(w.message.contains("headland"), "{what}: {}", w.message);
+            let m = &w.message;
+            assert!(m.contains(&flagged.to_string()), "{what}: {m}");
+            assert!(m.contains(cause), "{what}: {m}");
         }
     }
 }
@@ -333,12 +348,7 @@ fn connections_that_leave_the_field_are_flagged_and_warned_of() {
     }
     // A 6 m drill with two passes turning at 8 m (forward only): the l- and h-shaped fields have
     // corners where its joins onto the passes cannot stay in.
-    let drill = PlanOptions {
-        width: 6.0,
-        headland_passes: furrow::headland::passes::HeadlandPasses::Count(2),
-        turn_radius: 8.0,
-        ..PlanOptions::default()
-    };
+    let drill = drill();
     let mut flagged = 0;
     for field in valid_fields()
         .into_iter()
@@ -397,37 +407,19 @@ fn check_connections_crossing(p: &Plan, what: &str) -> usize {
         );
         flagged += usize::from(c.crosses_crop);
     }
-    let warned = p
-        .warnings
-        .iter()
-        .find(|w| w.code == WarningCode::ConnectionCrossesCrop);
-    match warned {
-        None => assert_eq!(flagged, 0, "{what}: connections cross crop unreported"),
-        Some(w) => {
-            assert!(flagged > 0, "{what}: warned of no connection");
-            assert!(
-                w.message.contains(&flagged.to_string()),
-                "{what}: {}",
-                w.message
-            );
-            assert!(
-                w.message.contains("turning radius"),
-                "{what}: {}",
-                w.message
-            );
-        }
-    }
+    check_warned(
+        p,
+        WarningCode::ConnectionCrossesCrop,
+        flagged,
+        "turning radius",
+        what,
+    );
     flagged
 }
 
 #[test]
 fn connections_over_crop_worked_later_are_flagged_and_warned_of() {
-    let drill = PlanOptions {
-        width: 6.0,
-        headland_passes: furrow::headland::passes::HeadlandPasses::Count(2),
-        turn_radius: 8.0,
-        ..PlanOptions::default()
-    };
+    let drill = drill();
     let mut flagged = 0;
     for field in valid_fields() {
         for (machine, options) in machines(&field.options) {

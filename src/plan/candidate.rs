@@ -568,11 +568,7 @@ fn connections_leaving(path: &Path, options: &PlanOptions) -> Option<Warning> {
     if outside == 0 {
         return None;
     }
-    let hint = if options.reverse {
-        ""
-    } else {
-        "; allowing the machine to reverse may let it turn within the headland"
-    };
+    let hint = reversing_hint(options);
     Some(Warning::new(
         WarningCode::ConnectionLeavesField,
         format!(
@@ -595,11 +591,7 @@ fn connections_crossing(path: &Path, options: &PlanOptions) -> Option<Warning> {
     } else {
         format!("{crossing} connections between blocks drive")
     };
-    let hint = if options.reverse {
-        ""
-    } else {
-        "; allowing the machine to reverse may let it turn within the headland"
-    };
+    let hint = reversing_hint(options);
     Some(Warning::new(
         WarningCode::ConnectionCrossesCrop,
         format!(
@@ -608,6 +600,15 @@ fn connections_crossing(path: &Path, options: &PlanOptions) -> Option<Warning> {
             Shortest(options.turn_radius)
         ),
     ))
+}
+
+/// What the connections' warnings suggest to a machine that only drives forward.
+fn reversing_hint(options: &PlanOptions) -> &'static str {
+    if options.reverse {
+        ""
+    } else {
+        "; allowing the machine to reverse may let it turn within the headland"
+    }
 }
 
 /// "1 turn leaves", "3 turns leave".
