@@ -49,10 +49,6 @@ use crate::swath::Swaths;
 /// onto a swath's end, or along the edge of a strip, crosses none.
 pub const IN_M: f64 = 1.0;
 
-/// How far (metres) the chords a run is checked by may lie off it: the crop's lines are a
-/// metre in from what they stand for, so a decimetre says enough.
-const CHORD_TOLERANCE_M: f64 = 0.1;
-
 /// The swaths of a route as crop standing until their step (see the module documentation).
 #[derive(Debug, Clone)]
 pub struct StandingCrop {
@@ -98,10 +94,8 @@ impl StandingCrop {
     /// later one works.
     pub fn crossed(&self, segments: &[Segment], step: usize) -> bool {
         // Piece by piece: the lines near a long run are most of a block's.
-        segments.iter().any(|s| {
-            !self
-                .lines
-                .crosses_none_within(std::slice::from_ref(s), step, CHORD_TOLERANCE_M)
-        })
+        segments
+            .iter()
+            .any(|s| !self.lines.crosses_none_from(std::slice::from_ref(s), step))
     }
 }

@@ -547,11 +547,6 @@ impl Area {
     /// Whether none of the chords of a run of segments crosses an edge tagged `from` or later
     /// ([`Area::of_lines`]; the edges of [`Area::new`] are all tagged 0).
     pub fn crosses_none_from(&self, segments: &[Segment], from: usize) -> bool {
-        self.crosses_none_within(segments, from, CHORD_TOLERANCE_M)
-    }
-
-    /// [`Area::crosses_none_from`], the chords within `tolerance` metres of the segments.
-    pub fn crosses_none_within(&self, segments: &[Segment], from: usize, tolerance: f64) -> bool {
         let mut low = [f64::INFINITY; 2];
         let mut high = [f64::NEG_INFINITY; 2];
         for s in segments {
@@ -574,7 +569,7 @@ impl Area {
         let mut previous: Option<Coord> = None;
         let mut beside: Vec<Line> = Vec::with_capacity(near.len());
         for s in segments {
-            let n = chords_within(s, tolerance);
+            let n = chords_within(s, CHORD_TOLERANCE_M);
             let poses = s.poses();
             let point = |i: usize| {
                 let p = poses.at(chord_distance(s, i, n));
@@ -589,7 +584,7 @@ impl Area {
                     beside.clear();
                     beside.extend(
                         near.iter()
-                            .filter(|e| reaches_ring(e, centre, radius - tolerance, radius))
+                            .filter(|e| reaches_ring(e, centre, radius - CHORD_TOLERANCE_M, radius))
                             .copied(),
                     );
                     if beside.is_empty() {
