@@ -265,18 +265,7 @@ impl Vehicle {
     /// The cheapest turn from `from` to `to` that stays in `area`, or the cheapest of all
     /// (with `inside: false`) if none does.
     pub fn turn(&self, from: Pose, to: Pose, area: &Area) -> Turn {
-        self.first_inside(self.candidates(from, to), from, to, area)
-    }
-
-    /// [`Vehicle::turn`], but only if it may cost less than `limit`: `None` when even the
-    /// cheapest form, inside or not, costs `limit` or more (then no turn is checked against
-    /// the area, which is most of the work).
-    pub fn turn_below(&self, from: Pose, to: Pose, area: &Area, limit: f64) -> Option<Turn> {
-        let candidates = self.candidates(from, to);
-        if candidates.first().is_some_and(|t| t.cost() >= limit) {
-            return None;
-        }
-        Some(self.first_inside(candidates, from, to, area))
+        self.turn_clear(from, to, area, &|_| true).0
     }
 
     /// [`Vehicle::turn`] that also keeps `clear` where a form inside the area does: the
@@ -293,8 +282,9 @@ impl Vehicle {
         self.first_inside_where(self.candidates(from, to), from, to, area, clear)
     }
 
-    /// [`Vehicle::turn_clear`], but only if it may cost less than `limit` (see
-    /// [`Vehicle::turn_below`]).
+    /// [`Vehicle::turn_clear`], but only if it may cost less than `limit`: `None` when even the
+    /// cheapest form, inside or not, costs `limit` or more (then no turn is checked against
+    /// the area, which is most of the work).
     pub fn turn_clear_below(
         &self,
         from: Pose,
@@ -308,13 +298,6 @@ impl Vehicle {
             return None;
         }
         Some(self.first_inside_where(candidates, from, to, area, clear))
-    }
-
-    /// The first of `candidates` (cheapest first) inside `area`, or the cheapest of all with
-    /// `inside: false`.
-    fn first_inside(&self, candidates: Vec<Turn>, from: Pose, to: Pose, area: &Area) -> Turn {
-        self.first_inside_where(candidates, from, to, area, &|_| true)
-            .0
     }
 
     /// The first of `candidates` (cheapest first) inside `area` for which `clear` holds, else
@@ -569,7 +552,7 @@ impl Area {
         let mut previous: Option<Coord> = None;
         let mut beside: Vec<Line> = Vec::with_capacity(near.len());
         for s in segments {
-            let n = chords_within(s, CHORD_TOLERANCE_M);
+            let n = chord_count(s);
             let poses = s.poses();
             let point = |i: usize| {
                 let p = poses.at(chord_distance(s, i, n));
@@ -689,6 +672,11 @@ pub fn chord_poses_within(s: &Segment, tolerance: f64) -> impl Iterator<Item = (
         .evenly(s.length, n)
         .zip(at)
         .map(move |(p, at)| (p, s.curvature_at(at)))
+}
+
+/// The number of chords [`chord_points`] divides a segment into.
+fn chord_count(s: &Segment) -> usize {
+    chords_within(s, CHORD_TOLERANCE_M)
 }
 
 /// The number of chords within `tolerance` metres of a segment (1 for a line): a chord of
