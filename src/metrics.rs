@@ -83,7 +83,8 @@ pub struct Summary {
     /// Headland area no pass covers: corners rounded to the turning radius, and necks too narrow
     /// to turn in.
     pub uncovered_headland_area_m2: f64,
-    /// Distance along swaths driven with the implement lifted over small (class A) obstacles.
+    /// Distance along swaths and headland passes driven with the implement lifted: over small
+    /// (class A) obstacles, and where it would reach out of the field or over an obstacle.
     pub lifted_distance_m: f64,
     /// Number of obstacles of each class, A to D.
     pub obstacle_classes: ClassCounts,
@@ -372,10 +373,11 @@ pub fn summarise(
             }
         },
         uncovered_headland_area_m2: headlands.uncovered_area_m2,
-        lifted_distance_m: swaths
-            .lifts
+        lifted_distance_m: path
+            .segments
             .iter()
-            .fold(0.0, |sum, l| sum + (l.along.1 - l.along.0)),
+            .flat_map(|s| &s.lifted)
+            .fold(0.0, |sum, l| sum + (l.1 - l.0)),
         obstacle_classes: ClassCounts {
             a: obstacles.count(ObstacleClass::A),
             b: obstacles.count(ObstacleClass::B),

@@ -31,7 +31,7 @@ use std::collections::BinaryHeap;
 /// The class of an obstacle.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
 pub enum ObstacleClass {
-    /// Small across the driving direction: swaths run past it with the implement lifted.
+    /// Small across the driving direction: swaths and headland passes run past it with the implement lifted.
     A,
     /// Near the boundary: merged into the field headland.
     B,

@@ -38,7 +38,6 @@ use crate::path::turn::chord_poses_within;
 use crate::path::{PathSegment, SegmentKind};
 use crate::plan::Plan;
 use crate::route::RouteStep;
-use crate::sort::SharedSort;
 use geo::{Coord, LineString, Polygon};
 use serde::Serialize;
 
@@ -127,7 +126,8 @@ pub struct Properties {
     /// Whether a headland pass is a closed path.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub closed: Option<bool>,
-    /// Where along a swath the implement is lifted over small obstacles: `[from, to]` metres from
+    /// Where along a swath or headland pass the implement is lifted (over small obstacles, and
+    /// wherever it would reach out of the field or over an obstacle): `[from, to]` metres from
     /// its first point.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub lifted: Option<Vec<[f64; 2]>>,
@@ -292,6 +292,7 @@ impl Plan {
                 heading_deg: Some(heading),
                 curvature: Some(curvature),
                 reverse: seg.reverses().then_some(reverse),
+                lifted: lifted_mm(&seg.lifted, length),
                 ..Default::default()
             };
             distance += length;
@@ -307,18 +308,13 @@ impl Plan {
                 p.crosses_crop = seg.crosses_crop.then_some(true);
             }
             match seg.step.and_then(|k| self.route.steps.get(k)) {
-                Some(&RouteStep::Swath {
-                    swath,
-                    block,
-                    reversed,
-                }) => {
+                Some(&RouteStep::Swath { swath, block, .. }) => {
                     p.index = Some(swath);
                     p.block = Some(block);
                     p.line = self.swaths.swaths.get(swath).map(|s| s.line_index);
                     if let (Some(&a), Some(&b)) = (seg.line.0.first(), seg.line.0.last()) {
                         p.bearing_deg = Some(round(bearing_of(a, b).to_degrees(), 1e-6));
                     }
-                    p.lifted = self.lifted(swath, reversed);
                     p.overlap_m = self
                         .swaths
                         .swaths
@@ -379,26 +375,6 @@ impl Plan {
             .then_some(true)
     }
 
-    /// Where the implement is lifted along swath `i`, metres from its first point as driven.
-    fn lifted(&self, i: usize, reversed: bool) -> Option<Vec<[f64; 2]>> {
-        let s = self.swaths.swaths.get(i)?;
-        let start = self.swaths.lifts.partition_point(|l| l.swath < i);
-        let mut out: Vec<[f64; 2]> = self.swaths.lifts[start..]
-            .iter()
-            .take_while(|l| l.swath == i)
-            .map(|l| {
-                let (a, b) = if reversed {
-                    (s.along.1 - l.along.1, s.along.1 - l.along.0)
-                } else {
-                    (l.along.0 - s.along.0, l.along.1 - s.along.0)
-                };
-                [round(a, 1e-3), round(b, 1e-3)]
-            })
-            .collect();
-        out.shared_sort_by(|a, b| a[0].total_cmp(&b[0]));
-        (!out.is_empty()).then_some(out)
-    }
-
     /// The block of the swath driven just before path segment `k`.
     fn block_before(&self, k: usize) -> Option<usize> {
         // A turn's block is that of the swath it leaves (a manoeuvre on a headland pass has none).
@@ -408,6 +384,26 @@ impl Plan {
             _ => None,
         }
     }
+}
+
+/// The stretches of a segment `length` metres long driven with the implement lifted, widened to
+/// the millimetre (lifted a little early, lowered a little late), one that reaches its end
+/// written to a millimetre past it: the line as written is a little longer or shorter than as
+/// driven, and no crumb of it is to be read as worked.
+fn lifted_mm(lifted: &[(f64, f64)], length: f64) -> Option<Vec<[f64; 2]>> {
+    let end = ((length + 1e-3) * 1e3).ceil() / 1e3;
+    let out: Vec<[f64; 2]> = lifted
+        .iter()
+        .map(|&(a, b)| {
+            let b = if b >= length - 1e-3 {
+                end
+            } else {
+                (b * 1e3).ceil() / 1e3
+            };
+            [(a * 1e3).floor() / 1e3 + 0.0, b]
+        })
+        .collect();
+    (!out.is_empty()).then_some(out)
 }
 
 /// The points of a drivable segment's line (its pieces at chords within `tolerance` metres,

@@ -8,64 +8,7 @@ use geo::{Contains, Coord, Distance, Point, Polygon};
 
 mod common;
 
-/// A worked stretch in local metres.
-type Stretch = (Coord, Coord);
-
-/// The worked stretches of a plan as its GeoJSON gives them, back in local metres.
-fn worked_stretches(plan: &Plan) -> (Vec<Stretch>, Vec<Coord>) {
-    let json: serde_json::Value =
-        serde_json::from_str(&plan.to_geojson_string()).expect("the plan's JSON");
-    let mut stretches = Vec::new();
-    let mut corners = Vec::new();
-    for f in json["features"].as_array().expect("features") {
-        let p = &f["properties"];
-        if p["working"] != serde_json::Value::Bool(true) {
-            continue;
-        }
-        let line: Vec<Coord> = f["geometry"]["coordinates"]
-            .as_array()
-            .expect("a line")
-            .iter()
-            .map(|c| {
-                let (x, y) = (c[0].as_f64().expect("x"), c[1].as_f64().expect("y"));
-                plan.field.frame.to_local([x, y])
-            })
-            .collect();
-        let lifted: Vec<(f64, f64)> = p["lifted"]
-            .as_array()
-            .map(|l| {
-                l.iter()
-                    .map(|r| (r[0].as_f64().unwrap_or(0.0), r[1].as_f64().unwrap_or(0.0)))
-                    .collect()
-            })
-            .unwrap_or_default();
-        let mut along = 0.0;
-        for w in line.windows(2) {
-            let d = w[1] - w[0];
-            let length = d.x.hypot(d.y);
-            // The parts of this stretch not lifted.
-            let mut from = 0.0;
-            for &(a, b) in &lifted {
-                let (a, b) = (
-                    (a - along).clamp(0.0, length),
-                    (b - along).clamp(0.0, length),
-                );
-                if a > from {
-                    stretches.push((w[0] + d * (from / length), w[0] + d * (a / length)));
-                }
-                from = from.max(b);
-            }
-            if length > from {
-                stretches.push((w[0] + d * (from / length), w[1]));
-            }
-            along += length;
-        }
-        if lifted.is_empty() && line.len() > 2 {
-            corners.extend_from_slice(&line[1..line.len() - 1]);
-        }
-    }
-    (stretches, corners)
-}
+use common::worked::{worked_stretches, Stretch};
 
 /// Whether `p` lies within `half` of the stretch, square to it and between its ends.
 fn in_strip(p: Coord, (a, b): Stretch, half: f64) -> bool {

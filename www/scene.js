@@ -121,7 +121,7 @@ export function fieldScene(parts, projection) {
  * The plan in local metres: blocks with a label point, obstacles with their class (A-D) and a
  * label point, obstacle groups (the hulls class-C obstacles were merged into), the parts of the
  * field left uncovered (`uncovered`: rings, `area_m2`, `reachable_m2`), the drivable
- * segments by kind (each `{ points, props }`; a swath the implement is lifted on also has
+ * segments by kind (each `{ points, props }`; a swath or pass the implement is lifted on also has
  * `worked` and `lifted`, lists of pieces), and where the route starts and ends.
  */
 export function planScene(plan, projection) {
@@ -165,7 +165,7 @@ export function planScene(plan, projection) {
       const points = projectRing(geometry.coordinates, f);
       if (points.length < 2) continue;
       const seg = { points, props };
-      if (props.kind === "swath" && Array.isArray(props.lifted) && props.lifted.length) {
+      if ((props.kind === "swath" || props.kind === "headland") && Array.isArray(props.lifted) && props.lifted.length) {
         Object.assign(seg, splitLifted(points, props.lifted, props.length_m));
       }
       scene.paths[props.kind].push(seg);

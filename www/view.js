@@ -586,12 +586,18 @@ export class PlanView {
       ctx.setLineDash([]);
     };
     // A headland pass is a closed loop, or (along only the edges that need it) an open line.
-    const headland = plan.paths.headland.map((seg) => ({ points: seg.points, closed: seg.props.closed === true }));
+    // Where the implement is lifted on a pass or swath, a gap with a thin dotted line and a tick
+    // at each end.
+    const headland = plan.paths.headland.flatMap((seg) =>
+      seg.worked
+        ? seg.worked.map((points) => ({ points, closed: false }))
+        : [{ points: seg.points, closed: seg.props.closed === true }],
+    );
     stroke(headland, t.headland, lw);
-    // Swaths: where the implement is lifted, a gap with a thin dotted line and a tick at each end.
     const worked = plan.paths.swath.flatMap((seg) => seg.worked ?? [seg.points]);
     stroke(worked, t.swath, lw);
-    this.drawLifted(plan.paths.swath, t.swath, lw);
+    this.drawn.liftedStretches =
+      this.drawLifted(plan.paths.headland, t.headland, lw) + this.drawLifted(plan.paths.swath, t.swath, lw);
     stroke(plan.paths.turn, t.turn, lw * 0.9);
     ctx.lineCap = "butt";
     stroke(plan.paths.connection, t.connection, lw + 0.5, [8, 5]);
@@ -602,12 +608,14 @@ export class PlanView {
     this.drawClassLabels(plan.obstacles ?? [], blockLabels);
   }
 
-  /** The stretches of swaths where the implement is lifted over a class-A obstacle. */
-  drawLifted(swaths, color, lw) {
+  /**
+   * The stretches of swaths or passes where the implement is lifted (over a class-A obstacle,
+   * or where it would reach out of the field); returns how many were drawn.
+   */
+  drawLifted(segments, color, lw) {
     const { ctx } = this;
-    const stretches = swaths.flatMap((seg) => seg.lifted ?? []);
-    this.drawn.liftedStretches = stretches.length;
-    if (!stretches.length) return;
+    const stretches = segments.flatMap((seg) => seg.lifted ?? []);
+    if (!stretches.length) return 0;
     const tick = Math.max(4, lw * 2.5);
     ctx.beginPath();
     for (const pts of stretches) this.linePath(pts);
@@ -633,6 +641,7 @@ export class PlanView {
     ctx.lineWidth = Math.max(1.25, lw * 0.8);
     ctx.stroke();
     ctx.lineCap = "round";
+    return stretches.length;
   }
 
   /** Unit direction (screen) of a line from its first to its last distinct point, or east. */

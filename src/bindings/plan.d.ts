@@ -274,8 +274,10 @@ export interface PlanFeatureProperties {
    */
   closed?: boolean;
   /**
-   * Where along a swath the implement is lifted over a class-A obstacle: `[from, to]` metres from
-   * the swath's first point (as driven), in order. Absent when it is never lifted.
+   * Where along a swath or headland pass the implement is lifted: `[from, to]` metres from its
+   * first point (as driven), in order; over class-A obstacles, and wherever the implement would
+   * reach out of the field or over an obstacle (the slanted ends of swaths in a field without
+   * headland, a pass across a class-A obstacle). Absent when it is never lifted.
    */
   lifted?: [number, number][];
   /**
@@ -375,7 +377,10 @@ export interface PlanSummary {
   remaining_area_ratio: number;
   /** Headland area no pass covers: corners rounded to the turning radius, necks too narrow to turn in. */
   uncovered_headland_area_m2: number;
-  /** Distance along swaths driven with the implement lifted over class-A obstacles. */
+  /**
+   * Distance along swaths and headland passes driven with the implement lifted (`lifted` of
+   * each).
+   */
   lifted_distance_m: number;
   /** Number of obstacles of each class. */
   obstacle_classes: ObstacleClassCounts;

@@ -23,9 +23,7 @@ use crate::geometry::BooleanOps;
 use crate::geometry::Extremes;
 use crate::headland::offset::open;
 use crate::path::Path;
-use crate::route::{Route, RouteStep};
 use crate::sort::SharedSort;
-use crate::swath::Swaths;
 use geo::{BoundingRect, Coord, MultiPolygon, Polygon};
 use raster::Grid;
 use serde::Serialize;
@@ -265,51 +263,18 @@ impl Tally {
 
 /// The coverage of a plan's path over its field (less all its obstacles, those lifted over
 /// too).
-pub fn of_plan(field: &Field, swaths: &Swaths, route: &Route, path: &Path, width: f64) -> Coverage {
+pub fn of_plan(field: &Field, path: &Path, width: f64) -> Coverage {
     let obstacles: Vec<Polygon> = field.obstacles.iter().map(|o| o.polygon.clone()).collect();
-    measure(
-        &field.boundary,
-        &obstacles,
-        &worked_lines(swaths, route, path),
-        width,
-    )
+    measure(&field.boundary, &obstacles, &worked_lines(path), width)
 }
 
-/// The lines a path works along: each swath as its centre line less the stretches lifted over
-/// obstacles, each other working segment as driven.
-pub fn worked_lines(swaths: &Swaths, route: &Route, path: &Path) -> Vec<Vec<Coord>> {
-    let mut out = Vec::new();
-    for seg in path.segments.iter().filter(|s| s.is_working()) {
-        let step = seg.step.and_then(|i| route.steps.get(i));
-        match step {
-            Some(&RouteStep::Swath { swath, .. }) => {
-                if let Some(s) = swaths.swaths.get(swath) {
-                    let start = swaths.lifts.partition_point(|l| l.swath < swath);
-                    let lifted = swaths.lifts[start..]
-                        .iter()
-                        .take_while(|l| l.swath == swath);
-                    let mut from = s.along.0;
-                    for l in lifted {
-                        if l.along.0 > from {
-                            out.push(vec![
-                                s.frame.point(s.across, from),
-                                s.frame.point(s.across, l.along.0),
-                            ]);
-                        }
-                        from = from.greater(l.along.1);
-                    }
-                    if s.along.1 > from {
-                        out.push(vec![
-                            s.frame.point(s.across, from),
-                            s.frame.point(s.across, s.along.1),
-                        ]);
-                    }
-                }
-            }
-            _ => out.push(seg.line.0.clone()),
-        }
-    }
-    out
+/// The lines a path works along: each working segment as driven, less the stretches where the
+/// implement is lifted.
+pub fn worked_lines(path: &Path) -> Vec<Vec<Coord>> {
+    path.segments
+        .iter()
+        .flat_map(|s| s.worked_stretches())
+        .collect()
 }
 
 /// Which cells are in the field and off its obstacles.

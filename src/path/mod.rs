@@ -24,14 +24,16 @@ pub mod crop;
 pub mod curve;
 pub mod dubins;
 pub mod follow;
+pub mod lift;
 pub mod reeds_shepp;
 pub mod sample;
 #[cfg(test)]
 mod testing;
 pub mod turn;
 
+use crate::geometry::intervals::Intervals;
 use crate::geometry::point_segment_distance;
-use crate::geometry::PlanarHypot;
+use crate::geometry::{Extremes, PlanarHypot};
 use crate::headland::HeadlandPass;
 use crate::route::{nearest_on_ring, Route, RouteStep};
 use crate::swath::Swaths;
@@ -110,6 +112,10 @@ pub struct PathSegment {
     /// works later ([`crop`]: no turn the machine can drive onto, off or along the headland
     /// keeps off it).
     pub crosses_crop: bool,
+    /// For a worked segment: the stretches driven with the implement lifted, metres along its
+    /// line from its first point, sorted and disjoint ([`lift`]: over small obstacles, and
+    /// wherever the implement would reach out of the field or over an obstacle).
+    pub lifted: Intervals,
 }
 
 impl PathSegment {
@@ -149,6 +155,7 @@ impl PathSegment {
             turn: None,
             leaves_field: false,
             crosses_crop: false,
+            lifted: Intervals::new(),
         }
     }
 
@@ -164,6 +171,27 @@ impl PathSegment {
     /// Whether the implement works along this segment.
     pub fn is_working(&self) -> bool {
         matches!(self.kind, SegmentKind::Swath | SegmentKind::HeadlandPass)
+    }
+
+    /// The stretches of its line worked with the implement down (none for a segment that does
+    /// not work).
+    pub fn worked_stretches(&self) -> Vec<Vec<Coord>> {
+        if !self.is_working() {
+            return Vec::new();
+        }
+        if self.lifted.is_empty() {
+            return vec![self.line.0.clone()];
+        }
+        let total = polyline_length(&self.line.0);
+        let mut out = Vec::new();
+        let mut from = 0.0;
+        for &(a, b) in self.lifted.iter().chain(std::iter::once(&(total, total))) {
+            if a > from {
+                out.push(cut_polyline(&self.line.0, from, a));
+            }
+            from = from.greater(b);
+        }
+        out
     }
 
     /// Whether any piece of it is driven in reverse.
@@ -368,6 +396,7 @@ pub fn build_path(
             segments.push(f);
         }
     }
+    lift::lift_where_needed(&mut segments, route, swaths, vehicle.width / 2.0, area);
     Path { segments }
 }
 

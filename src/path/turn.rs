@@ -427,7 +427,7 @@ fn three_point(from: Pose, to: Pose, r: f64) -> Option<Turn> {
 /// an R-tree: a turn is checked by its chords (at most 5 mm off the curve) against them.
 #[derive(Debug, Clone)]
 pub struct Area {
-    edges: RTree<Edge>,
+    pub(super) edges: RTree<Edge>,
 }
 
 /// An edge of the driving area's rings.

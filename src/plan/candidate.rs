@@ -114,7 +114,7 @@ pub(super) fn fill_leftovers(
     let Some(mut tally) = Tally::new(&prep.field.boundary, &obstacles, width) else {
         return Ok((worked, Coverage::default()));
     };
-    tally.work(&worked_lines(&worked.swaths, &worked.route, &worked.path));
+    tally.work(&worked_lines(&worked.path));
     let before = tally.coverage();
     // The route reaches a piece along the headland passes and the field's swaths, worked by then.
     let tracks: Vec<geo::LineString> = worked
@@ -216,7 +216,7 @@ pub(super) fn fill_leftovers(
     // Counted again along the path as driven now: where the new route enters a headland pass
     // decides where its manoeuvres lift the implement.
     tally.forget();
-    tally.work(&worked_lines(&laid.swaths, &route, &path));
+    tally.work(&worked_lines(&path));
     let after = tally.coverage();
     times.lap(&mut clock, |t| &mut t.metrics);
     let filled = Worked {
@@ -404,7 +404,7 @@ fn lift_over_small_obstacles(prep: &Prepared, laid: &mut Laid) {
             Warning::new(
                 WarningCode::ImplementLifted,
                 format!(
-                    "{} is less than {} m across the driving direction; swaths run past it with the implement lifted",
+                    "{} is less than {} m across the driving direction; swaths and headland passes run past it with the implement lifted",
                     field.obstacles[i].subject(),
                     Decimals(prep.options.obstacle_threshold_m(), 1)
                 ),

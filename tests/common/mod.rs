@@ -1,3 +1,4 @@
 pub mod corpus;
 pub mod seeded;
 pub mod shapes;
+pub mod worked;

@@ -1,0 +1,77 @@
+//! The stretches a plan works, read back from its GeoJSON (not from the planner's own
+//! structures): each working feature's line less its lifted stretches, in local metres.
+#![allow(dead_code)]
+
+use furrow::Plan;
+use geo::Coord;
+
+/// A worked stretch in local metres: the implement's centre runs straight from one end to the
+/// other with the implement down.
+pub type Stretch = (Coord, Coord);
+
+/// The worked stretches of a plan and the inner vertices of its lines worked without a lift.
+pub fn worked_stretches(plan: &Plan) -> (Vec<Stretch>, Vec<Coord>) {
+    let (stretches, corners): (Vec<_>, _) = worked_stretches_by_kind(plan);
+    (stretches.into_iter().map(|(s, _)| s).collect(), corners)
+}
+
+/// The worked stretches of a plan, each with the `kind` of the feature it belongs to (`swath`,
+/// `headland`, ...), and the inner vertices of its lines worked without a lift.
+pub fn worked_stretches_by_kind(plan: &Plan) -> (Vec<(Stretch, String)>, Vec<Coord>) {
+    let json: serde_json::Value =
+        serde_json::from_str(&plan.to_geojson_string()).expect("the plan's JSON");
+    let mut stretches = Vec::new();
+    let mut corners = Vec::new();
+    for f in json["features"].as_array().expect("features") {
+        let p = &f["properties"];
+        if p["working"] != serde_json::Value::Bool(true) {
+            continue;
+        }
+        let kind = p["kind"].as_str().unwrap_or("").to_string();
+        let line: Vec<Coord> = f["geometry"]["coordinates"]
+            .as_array()
+            .expect("a line")
+            .iter()
+            .map(|c| {
+                let (x, y) = (c[0].as_f64().expect("x"), c[1].as_f64().expect("y"));
+                plan.field.frame.to_local([x, y])
+            })
+            .collect();
+        let lifted: Vec<(f64, f64)> = p["lifted"]
+            .as_array()
+            .map(|l| {
+                l.iter()
+                    .map(|r| (r[0].as_f64().unwrap_or(0.0), r[1].as_f64().unwrap_or(0.0)))
+                    .collect()
+            })
+            .unwrap_or_default();
+        let mut along = 0.0;
+        for w in line.windows(2) {
+            let d = w[1] - w[0];
+            let length = d.x.hypot(d.y);
+            // The parts of this stretch not lifted.
+            let mut from = 0.0;
+            for &(a, b) in &lifted {
+                let (a, b) = (
+                    (a - along).clamp(0.0, length),
+                    (b - along).clamp(0.0, length),
+                );
+                if a > from {
+                    stretches.push((
+                        (w[0] + d * (from / length), w[0] + d * (a / length)),
+                        kind.clone(),
+                    ));
+                }
+                from = from.max(b);
+            }
+            if length > from {
+                stretches.push(((w[0] + d * (from / length), w[1]), kind.clone()));
+            }
+            along += length;
+        }
+        if lifted.is_empty() && line.len() > 2 {
+            corners.extend_from_slice(&line[1..line.len() - 1]);
+        }
+    }
+    (stretches, corners)
+}
