@@ -389,9 +389,11 @@ fn every_real_parcel_plans_with_the_passes_that_leave_it_swaths() {
             options.width,
             parcels.len()
         );
-        // Parcels that cannot hold the passes asked for are common at these widths (before
-        // this fallback, 27 were refused at 6 m and 53 at 24 m).
-        assert!(reduced >= 10, "{reduced}");
+        // Some parcels cannot hold the passes asked for at these widths (without this
+        // fallback, 27 were refused at 6 m and 53 at 24 m). Since a pass the turning disc fits
+        // nowhere is laid exact, rather than dropped, 5 of the rest at 6 m and 1 at 24 m are
+        // planned with fewer passes (10 and 15 before).
+        assert!(reduced >= 1, "{reduced}");
     }
     // Parcel 63 of the Danish sample is invalid as the register gives it: its ring goes out to a
     // point 0.7 m away and straight back, touching itself. That spike is repaired, with a warning.

@@ -324,3 +324,31 @@ fn no_pass_works_through_an_obstacle_at_a_large_turning_radius() {
         "{c:?} against {counted:.4}"
     );
 }
+
+/// A strip whose first pass has no room for the turning disc: 40 m wide at 24 m with turns of
+/// 9 m (the pass's room, 12 m in, is 16 m wide). The pass is laid exact, its corners driven
+/// with manoeuvres, and works both sides of the strip; without it the field was planned with no
+/// headland and its swaths, overhanging the ends, were lifted there (85 % worked).
+#[test]
+fn a_pass_the_turning_disc_does_not_fit_works_the_strip_round() {
+    let text = r#"{"type":"Polygon","coordinates":[[[0,0],[150,0],[150,40],[0,40],[0,0]]]}"#;
+    let options = furrow::PlanOptions {
+        width: 24.0,
+        headland_passes: 1.into(),
+        turn_radius: 9.0,
+        coordinates: furrow::field::Coordinates::Metric,
+        ..furrow::PlanOptions::default()
+    };
+    let plan = plan_geojson(text, &options).unwrap_or_else(|e| panic!("{e}"));
+    assert!(
+        plan.headlands
+            .passes
+            .iter()
+            .any(|p| p.around == furrow::headland::PassAround::Field),
+        "no pass round the field"
+    );
+    let counted = independent_coverage(&plan, 0.5);
+    assert!(counted > 0.92, "{counted:.4} of the strip worked");
+    let outside = worked_outside(&plan, 0.25);
+    assert!(outside <= 1.0, "{outside:.1} m² worked outside");
+}

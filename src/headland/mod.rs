@@ -226,14 +226,28 @@ pub fn build(
                 }
             })
         };
+        // The opening of the pass's room by the turning disc; where the disc fits nowhere, the
+        // room itself: the pass is laid exact and the path drives its corners with manoeuvres
+        // (lifted where one would work outside), rather than dropped.
         let drivable = if uniform {
             // The opening of the inset by d is the outset of the inset by d + r.
-            outset(
+            let opened = outset(
                 &inset(&region, d + settings.turn_radius),
                 settings.turn_radius,
-            )
+            );
+            if opened.0.is_empty() {
+                inset(&region, d)
+            } else {
+                opened
+            }
         } else {
-            open(&keep_clear(&region, &constraints), settings.turn_radius)
+            let room = keep_clear(&region, &constraints);
+            let opened = open(&room, settings.turn_radius);
+            if opened.0.is_empty() {
+                room
+            } else {
+                opened
+            }
         };
         for polygon in &drivable.0 {
             let rings = std::iter::once((polygon.exterior(), PassAround::Field)).chain(
@@ -599,6 +613,34 @@ mod tests {
         // A 5 m strip at 6 m: not even the first pass, 3 m in, fits.
         let e = constant_width(&field(rectangle(100.0, 5.0), vec![]), 6.0, 1).unwrap_err();
         assert_eq!(e.code, ErrorCode::HeadlandConsumesField);
+    }
+
+    #[test]
+    fn a_pass_the_turning_disc_fits_nowhere_is_laid_exact() {
+        // 40 m wide at 24 m with turns of 9 m: the first pass's room (12 m in, 16 m wide) holds
+        // no 18 m disc. Its exact offset is the pass: straight sides 16 m apart, sharp corners.
+        let settings = HeadlandSettings {
+            width: 24.0,
+            turn_radius: 9.0,
+            obstacle_passes: 1,
+            edge_passes: &[1, 1, 1, 1],
+        };
+        let h = build(&rectangle(150.0, 40.0), &[], &settings).unwrap();
+        assert_eq!(h.passes.len(), 1);
+        let ring = &h.passes[0].line;
+        let xs: Vec<f64> = ring.0.iter().map(|c| c.x).collect();
+        let ys: Vec<f64> = ring.0.iter().map(|c| c.y).collect();
+        let lo = |v: &[f64]| v.iter().copied().fold(f64::INFINITY, f64::min);
+        let hi = |v: &[f64]| v.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        assert!(
+            (lo(&xs) - 12.0).abs() < 1e-6 && (hi(&xs) - 138.0).abs() < 1e-6,
+            "{xs:?}"
+        );
+        assert!(
+            (lo(&ys) - 12.0).abs() < 1e-6 && (hi(&ys) - 28.0).abs() < 1e-6,
+            "{ys:?}"
+        );
+        assert_eq!(ring.0.len(), 5, "four sharp corners");
     }
 
     #[test]
