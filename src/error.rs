@@ -272,6 +272,10 @@ pub enum WarningCode {
     /// An obstacle is small across the driving direction (class A): swaths run past it with the
     /// implement lifted.
     ImplementLifted,
+    /// Swaths or passes are lifted where the implement would reach out of the field or over an
+    /// obstacle (swaths laid without headland beside sides not parallel to them): the crop
+    /// there is left standing.
+    ImplementLiftedAtEdges,
     /// A prohibited region forbids the field's direction: it is worked in a direction of its own.
     RegionOwnDirection,
     /// The forbidden ranges leave a prohibited region no direction: it gets no swaths.
@@ -313,6 +317,7 @@ impl WarningCode {
         WarningCode::ShortSwathsDropped,
         WarningCode::StraightConnections,
         WarningCode::ImplementLifted,
+        WarningCode::ImplementLiftedAtEdges,
         WarningCode::RegionOwnDirection,
         WarningCode::RegionNotWorked,
         WarningCode::DirectionNotSearched,
@@ -340,6 +345,7 @@ impl WarningCode {
             WarningCode::ShortSwathsDropped => "short_swaths_dropped",
             WarningCode::StraightConnections => "straight_connections",
             WarningCode::ImplementLifted => "implement_lifted",
+            WarningCode::ImplementLiftedAtEdges => "implement_lifted_at_edges",
             WarningCode::RegionOwnDirection => "region_own_direction",
             WarningCode::RegionNotWorked => "region_not_worked",
             WarningCode::DirectionNotSearched => "direction_not_searched",

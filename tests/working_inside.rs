@@ -196,12 +196,13 @@ fn check(text: &str, options: &PlanOptions) -> Result<(), TestCaseError> {
     Ok(())
 }
 
-/// A swath laid without headland ends at a slanted boundary edge: the implement is lifted where
-/// its bar would cross the edge (its centre line runs on to the boundary).
+/// A swath laid without headland beside a side not parallel to it: the implement is lifted
+/// where its bar would reach past that side, and the farmer is told why the crop there stands.
 #[test]
-fn a_slanted_end_without_headland_is_worked_only_as_far_as_the_bar_keeps_in() {
-    // A 60 m wide field whose north side rises 1 m for every metre east, 12 m implement.
-    let text = r#"{"type":"Polygon","coordinates":[[[0,0],[60,0],[60,160],[0,100],[0,0]]]}"#;
+fn a_swath_beside_a_slanted_side_without_headland_is_lifted_where_the_bar_would_reach_out() {
+    // 60 m wide at the south, its west side leaning 10 m east over 100 m; a 12 m implement
+    // along it: the first strip (x = 0..12) runs past the west side nearly all its length.
+    let text = r#"{"type":"Polygon","coordinates":[[[0,0],[60,0],[60,100],[10,100],[0,0]]]}"#;
     let options = PlanOptions {
         width: 12.0,
         headland_passes: 0.into(),
@@ -211,6 +212,24 @@ fn a_slanted_end_without_headland_is_worked_only_as_far_as_the_bar_keeps_in() {
         ..PlanOptions::default()
     };
     let plan = plan_geojson(text, &options).unwrap_or_else(|e| panic!("{e}"));
-    assert!(plan.summary.lifted_distance_m > 0.0, "{:?}", plan.summary);
+    assert!(plan.summary.lifted_distance_m > 50.0, "{:?}", plan.summary);
     assert_eq!(deepest_outside(&plan).map(|w| w.0), None);
+    assert!(
+        plan.warnings
+            .iter()
+            .any(|w| w.code == furrow::WarningCode::ImplementLiftedAtEdges),
+        "{:?}",
+        plan.warnings
+    );
+    // With a headland pass round it, nothing reaches out and nothing is lifted.
+    let with_pass = PlanOptions {
+        headland_passes: 1.into(),
+        ..options
+    };
+    let plan = plan_geojson(text, &with_pass).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(plan.summary.lifted_distance_m, 0.0);
+    assert!(!plan
+        .warnings
+        .iter()
+        .any(|w| w.code == furrow::WarningCode::ImplementLiftedAtEdges));
 }

@@ -559,6 +559,7 @@ export type WarningCode =
   | "short_swaths_dropped"
   | "straight_connections"
   | "implement_lifted"
+  | "implement_lifted_at_edges"
   | "region_own_direction"
   | "region_not_worked"
   | "direction_not_searched"

@@ -119,11 +119,32 @@ impl Area {
 /// are lifted too, metres: the implement is not lowered for a few millimetres.
 const CRUMB_M: f64 = 0.01;
 
+/// How far the worked segments of a path are driven with the implement lifted because it would
+/// reach out of the field or over an obstacle: their lifted stretches less those over the small
+/// obstacles their swaths pass ([`Swaths::lifts`]), metres.
+pub fn lifted_at_edges_m(path: &super::Path, route: &Route, swaths: &Swaths) -> f64 {
+    let length = |v: &[(f64, f64)]| v.iter().map(|(a, b)| b - a).sum::<f64>();
+    path.segments
+        .iter()
+        .filter(|s| !s.lifted.is_empty())
+        .map(|s| {
+            let small = match s.step.and_then(|k| route.steps.get(k)) {
+                Some(&RouteStep::Swath {
+                    swath, reversed, ..
+                }) => over_small_obstacles(swaths, swath, reversed),
+                _ => Vec::new(),
+            };
+            (length(&s.lifted) - length(&small)).max(0.0)
+        })
+        .sum()
+}
+
 /// `lifted` (within `0..total`) with the worked stretches shorter than [`CRUMB_M`] between its
-/// stretches and at the ends closed.
+/// stretches and at the ends closed, and the stretches of no length (under a micrometre: an
+/// edge the bar only touches, as the boundary square across a swath's end) left out.
 fn close_crumbs(lifted: &[(f64, f64)], total: f64) -> Intervals {
     let mut out: Intervals = Vec::with_capacity(lifted.len());
-    for &(a, b) in lifted {
+    for &(a, b) in lifted.iter().filter(|(a, b)| b - a > 1e-6) {
         let a = if a < CRUMB_M { 0.0 } else { a };
         let b = if b > total - CRUMB_M { total } else { b };
         match out.last_mut() {

@@ -206,6 +206,7 @@ pub(super) fn fill_leftovers(
             w.code,
             WarningCode::StraightConnections
                 | WarningCode::TurnLeavesField
+                | WarningCode::ImplementLiftedAtEdges
                 | WarningCode::ConnectionLeavesField
                 | WarningCode::ConnectionCrossesCrop
         )
@@ -268,6 +269,7 @@ fn route_and_path(
     };
     times.lap(&mut clock, |t| &mut t.path);
     warnings.extend(turns_leaving(path, prep.options));
+    warnings.extend(lifted_at_edges(path, &route, &laid.swaths));
     warnings.extend(connections_leaving(path, prep.options));
     warnings.extend(connections_crossing(path, prep.options));
     let summary = measure(prep, laid, blocks, &route, path, prep.options.machine());
@@ -560,6 +562,25 @@ fn turns_leaving(path: &Path, options: &PlanOptions) -> Option<Warning> {
             Decimals(depth, 1)
         ),
     ))
+}
+
+/// Lifted stretches shorter than this in all (metres) are not worth a warning: a pass's chord a
+/// centimetre too close to an obstacle.
+const LIFTED_AT_EDGES_WARNED_M: f64 = 1.0;
+
+/// The warning for the swaths and passes lifted where the implement would reach out of the
+/// field or over an obstacle.
+fn lifted_at_edges(path: &Path, route: &Route, swaths: &Swaths) -> Option<Warning> {
+    let lifted = crate::path::lift::lifted_at_edges_m(path, route, swaths);
+    (lifted >= LIFTED_AT_EDGES_WARNED_M).then(|| {
+        Warning::new(
+            WarningCode::ImplementLiftedAtEdges,
+            format!(
+                "the implement is lifted along {} m of swaths and passes where it would reach out of the field or over an obstacle, and the crop beside is left standing; headland passes along those edges would work it",
+                Decimals(lifted, 0)
+            ),
+        )
+    })
 }
 
 /// The warning for the connections that leave the field or cross an obstacle, with their cause.
