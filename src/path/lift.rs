@@ -47,7 +47,7 @@ impl Area {
     /// ```
     pub fn reaches_out(&self, line: &[Coord], half: f64) -> Intervals {
         let reach = (half - LIFT_TOLERANCE_M).max(0.0);
-        let mut out: Intervals = Vec::new();
+        let mut hits: Intervals = Vec::new();
         let mut along = 0.0;
         for w in line.windows(2) {
             let length = {
@@ -55,14 +55,13 @@ impl Area {
                 d.x.planar_hypot(d.y)
             };
             if length > 0.0 {
-                let mut hits = self.edges_in_strip(w[0], w[1], length, reach);
-                hits.iter_mut()
-                    .for_each(|h| *h = (along + h.0, along + h.1));
-                hits.sort_unstable_by(|a, b| a.0.total_cmp(&b.0));
-                out = union(&out, &union(&[], &hits));
+                let on_chord = self.edges_in_strip(w[0], w[1], length, reach);
+                hits.extend(on_chord.iter().map(|h| (along + h.0, along + h.1)));
             }
             along += length;
         }
+        hits.sort_unstable_by(|a, b| a.0.total_cmp(&b.0));
+        let out = union(&[], &hits);
         // Between the stretches where an edge reaches into the strip, the whole bar is on one
         // side of every edge: outside where the line is.
         let mut gaps = Vec::new();
@@ -95,7 +94,7 @@ impl Area {
             .collect()
     }
 
-    /// Whether `p` is inside the area (an even number of edges crosses the ray east of it).
+    /// Whether `p` is inside the area (an odd number of edges crosses the ray east of it).
     fn contains_point(&self, p: Coord) -> bool {
         let east = self.edges.root().envelope().upper()[0];
         // (Written so that a NaN point is outside.)
