@@ -272,9 +272,9 @@ pub enum WarningCode {
     /// An obstacle is small across the driving direction (class A): swaths run past it with the
     /// implement lifted.
     ImplementLifted,
-    /// Swaths or passes are lifted where the implement would reach out of the field or over an
-    /// obstacle (swaths laid without headland beside sides not parallel to them): the crop
-    /// there is left standing.
+    /// Swaths or passes are lifted where the implement would reach past the field's boundary
+    /// (swaths laid without headland beside sides not parallel to them): the crop there is left
+    /// standing.
     ImplementLiftedAtEdges,
     /// A prohibited region forbids the field's direction: it is worked in a direction of its own.
     RegionOwnDirection,

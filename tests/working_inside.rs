@@ -233,3 +233,34 @@ fn a_swath_beside_a_slanted_side_without_headland_is_lifted_where_the_bar_would_
         .iter()
         .any(|w| w.code == furrow::WarningCode::ImplementLiftedAtEdges));
 }
+
+/// A pole in the headland: the pass over it is lifted there, and the farmer is told of the pole
+/// (`implement_lifted`), not told that headland passes would work crop beside the boundary.
+#[test]
+fn a_pass_over_a_pole_is_lifted_and_warned_of_as_the_pole() {
+    let text = r#"{"type":"FeatureCollection","features":[
+        {"type":"Feature","properties":{"role":"boundary"},"geometry":{"type":"Polygon","coordinates":[[[0,0],[100,0],[100,60],[0,60],[0,0]]]}},
+        {"type":"Feature","properties":{"role":"obstacle"},"geometry":{"type":"Polygon","coordinates":[[[2.5,29.5],[3.5,29.5],[3.5,30.5],[2.5,30.5],[2.5,29.5]]]}}]}"#;
+    let options = PlanOptions {
+        width: 6.0,
+        headland_passes: 2.into(),
+        turn_radius: 5.0,
+        bearing_deg: Some(0.0),
+        coordinates: furrow::field::Coordinates::Metric,
+        ..PlanOptions::default()
+    };
+    let plan = plan_geojson(text, &options).unwrap_or_else(|e| panic!("{e}"));
+    let (stretches, _) = worked_stretches_by_kind(&plan);
+    assert!(stretches.iter().any(|(_, kind)| kind == "headland"));
+    assert!(plan.summary.lifted_distance_m > 0.9, "{:?}", plan.summary);
+    assert_eq!(deepest_outside(&plan).map(|w| w.0), None);
+    let codes: Vec<_> = plan.warnings.iter().map(|w| w.code).collect();
+    assert!(
+        codes.contains(&furrow::WarningCode::ImplementLifted),
+        "{codes:?}"
+    );
+    assert!(
+        !codes.contains(&furrow::WarningCode::ImplementLiftedAtEdges),
+        "{codes:?}"
+    );
+}

@@ -9,10 +9,10 @@
 //! slanted ends of swaths laid without headland, and the sides of the outer swaths of such a
 //! field are lifted so; a line the bar keeps inside is left whole.
 
-use super::turn::Area;
+use super::turn::{Area, BOUNDARY_EDGE};
 use super::PathSegment;
 use crate::geometry::intervals::{union, Intervals};
-use crate::geometry::PlanarHypot;
+use crate::geometry::{IndexedSegment, PlanarHypot};
 use crate::route::{Route, RouteStep};
 use crate::swath::Swaths;
 use geo::Coord;
@@ -46,22 +46,7 @@ impl Area {
     /// assert!(area.reaches_out(&line, 3.0).is_empty());
     /// ```
     pub fn reaches_out(&self, line: &[Coord], half: f64) -> Intervals {
-        let reach = (half - LIFT_TOLERANCE_M).max(0.0);
-        let mut hits: Intervals = Vec::new();
-        let mut along = 0.0;
-        for w in line.windows(2) {
-            let length = {
-                let d = w[1] - w[0];
-                d.x.planar_hypot(d.y)
-            };
-            if length > 0.0 {
-                let on_chord = self.edges_in_strip(w[0], w[1], length, reach);
-                hits.extend(on_chord.iter().map(|h| (along + h.0, along + h.1)));
-            }
-            along += length;
-        }
-        hits.sort_unstable_by(|a, b| a.0.total_cmp(&b.0));
-        let out = union(&[], &hits);
+        let (out, along) = self.edges_reaching_in(line, half, &|_| true);
         // Between the stretches where an edge reaches into the strip, the whole bar is on one
         // side of every edge: outside where the line is.
         let mut gaps = Vec::new();
@@ -76,9 +61,51 @@ impl Area {
         close_crumbs(&union(&out, &gaps), along)
     }
 
-    /// Where along the chord `a`-`b` (of `length`, metres from `a`) an edge reaches into the
-    /// strip `reach` either side of it.
-    fn edges_in_strip(&self, a: Coord, b: Coord, length: f64, reach: f64) -> Intervals {
+    /// How far along `line` an edge of the field's boundary (not of an obstacle) reaches into
+    /// the strip of a bar `2 * half` wide square to it, metres: where the bar would reach past
+    /// the boundary beside it, crop a headland pass along that edge would work.
+    pub fn reach_past_boundary_m(&self, line: &[Coord], half: f64) -> f64 {
+        let (hits, _) = self.edges_reaching_in(line, half, &|e| e.line == BOUNDARY_EDGE);
+        hits.iter().map(|(a, b)| b - a).sum()
+    }
+
+    /// The stretches of `line` (metres along it, merged) where an edge that `keep` keeps
+    /// reaches into the strip `half` (less [`LIFT_TOLERANCE_M`]) either side of it, and the
+    /// line's length.
+    fn edges_reaching_in(
+        &self,
+        line: &[Coord],
+        half: f64,
+        keep: &dyn Fn(&IndexedSegment) -> bool,
+    ) -> (Intervals, f64) {
+        let reach = (half - LIFT_TOLERANCE_M).max(0.0);
+        let mut hits: Intervals = Vec::new();
+        let mut along = 0.0;
+        for w in line.windows(2) {
+            let length = {
+                let d = w[1] - w[0];
+                d.x.planar_hypot(d.y)
+            };
+            if length > 0.0 {
+                let on_chord = self.edges_in_strip(w[0], w[1], length, reach, keep);
+                hits.extend(on_chord.iter().map(|h| (along + h.0, along + h.1)));
+            }
+            along += length;
+        }
+        hits.sort_unstable_by(|a, b| a.0.total_cmp(&b.0));
+        (union(&[], &hits), along)
+    }
+
+    /// Where along the chord `a`-`b` (of `length`, metres from `a`) an edge that `keep` keeps
+    /// reaches into the strip `reach` either side of it.
+    fn edges_in_strip(
+        &self,
+        a: Coord,
+        b: Coord,
+        length: f64,
+        reach: f64,
+        keep: &dyn Fn(&IndexedSegment) -> bool,
+    ) -> Intervals {
         let u = (b - a) / length;
         let local = |p: Coord| {
             let d = p - a;
@@ -90,6 +117,7 @@ impl Area {
         );
         self.edges
             .locate_in_envelope_intersecting(&envelope)
+            .filter(|e| keep(e))
             .filter_map(|e| clip_to_strip(local(e.a), local(e.b), length, reach))
             .collect()
     }
@@ -118,23 +146,14 @@ impl Area {
 /// are lifted too, metres: the implement is not lowered for a few millimetres.
 const CRUMB_M: f64 = 0.01;
 
-/// How far the worked segments of a path are driven with the implement lifted because it would
-/// reach out of the field or over an obstacle: their lifted stretches less those over the small
-/// obstacles their swaths pass ([`Swaths::lifts`]), metres.
-pub fn lifted_at_edges_m(path: &super::Path, route: &Route, swaths: &Swaths) -> f64 {
-    let length = |v: &[(f64, f64)]| v.iter().map(|(a, b)| b - a).sum::<f64>();
+/// How far the worked segments of a path are lifted because the implement would reach past
+/// the field's boundary (not over an obstacle: a pole in the headland is no edge a pass would
+/// work), metres; only the segments lifted somewhere are measured.
+pub fn lifted_at_edges_m(path: &super::Path, area: &Area, half: f64) -> f64 {
     path.segments
         .iter()
         .filter(|s| !s.lifted.is_empty())
-        .map(|s| {
-            let small = match s.step.and_then(|k| route.steps.get(k)) {
-                Some(&RouteStep::Swath {
-                    swath, reversed, ..
-                }) => over_small_obstacles(swaths, swath, reversed),
-                _ => Vec::new(),
-            };
-            (length(&s.lifted) - length(&small)).max(0.0)
-        })
+        .map(|s| area.reach_past_boundary_m(&s.line.0, half))
         .sum()
 }
 
@@ -257,6 +276,25 @@ mod tests {
             coord! { x: 90., y: 50. },
         ];
         assert_eq!(area.reaches_out(&line, 3.0), vec![(20.0, 60.0)]);
+    }
+
+    #[test]
+    fn a_line_ending_on_the_boundary_square_across_it_lifts_nothing() {
+        // The bar at the line's end lies along the east side: it touches it, no more.
+        let area = Area::new(&square(), &[]);
+        let line = [coord! { x: 10., y: 50. }, coord! { x: 100., y: 50. }];
+        assert!(area.reaches_out(&line, 3.0).is_empty());
+    }
+
+    #[test]
+    fn only_the_boundary_counts_as_reached_past() {
+        let pond = polygon![(x: 30., y: 30.), (x: 70., y: 30.), (x: 70., y: 70.), (x: 30., y: 70.)];
+        let area = Area::new(&square(), &[&pond]);
+        let through_pond = [coord! { x: 10., y: 50. }, coord! { x: 90., y: 50. }];
+        assert_eq!(area.reach_past_boundary_m(&through_pond, 3.0), 0.0);
+        // Along y = 1.5 the bar (y = -1.5..4.5) reaches past the south side all its length.
+        let along_south = [coord! { x: 10., y: 1.5 }, coord! { x: 90., y: 1.5 }];
+        assert!((area.reach_past_boundary_m(&along_south, 3.0) - 80.0).abs() < 1e-9);
     }
 
     #[test]

@@ -436,25 +436,31 @@ type Edge = IndexedSegment;
 /// Chords of a sampled curve are at most this far off it, metres.
 pub const CHORD_TOLERANCE_M: f64 = 0.005;
 
+/// The tag of [`Area::new`]'s edges of the field boundary; those of obstacles are tagged
+/// [`OBSTACLE_EDGE`] (both crossed by [`Area::contains`]).
+pub(super) const BOUNDARY_EDGE: usize = 0;
+/// The tag of [`Area::new`]'s edges of obstacles.
+pub(super) const OBSTACLE_EDGE: usize = 1;
+
 impl Area {
     /// The area inside `boundary` (with its holes) and outside `obstacles`.
     pub fn new(boundary: &Polygon, obstacles: &[&Polygon]) -> Self {
         let mut edges = Vec::new();
-        let mut add = |ring: &LineString| {
+        let mut add = |ring: &LineString, tag: usize| {
             for l in ring.lines() {
                 if l.start != l.end {
-                    edges.push(Edge::new(l.start, l.end, 0, 0));
+                    edges.push(Edge::new(l.start, l.end, tag, 0));
                 }
             }
         };
-        add(boundary.exterior());
+        add(boundary.exterior(), BOUNDARY_EDGE);
         for ring in boundary.interiors() {
-            add(ring);
+            add(ring, BOUNDARY_EDGE);
         }
         for o in obstacles {
-            add(o.exterior());
+            add(o.exterior(), OBSTACLE_EDGE);
             for ring in o.interiors() {
-                add(ring);
+                add(ring, OBSTACLE_EDGE);
             }
         }
         Area {
@@ -528,7 +534,7 @@ impl Area {
     }
 
     /// Whether none of the chords of a run of segments crosses an edge tagged `from` or later
-    /// ([`Area::of_lines`]; the edges of [`Area::new`] are all tagged 0).
+    /// ([`Area::of_lines`]; the edges of [`Area::new`] are tagged 0 and 1: all crossed from 0).
     pub fn crosses_none_from(&self, segments: &[Segment], from: usize) -> bool {
         let mut low = [f64::INFINITY; 2];
         let mut high = [f64::NEG_INFINITY; 2];

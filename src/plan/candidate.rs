@@ -269,7 +269,7 @@ fn route_and_path(
     };
     times.lap(&mut clock, |t| &mut t.path);
     warnings.extend(turns_leaving(path, prep.options));
-    warnings.extend(lifted_at_edges(path, &route, &laid.swaths));
+    warnings.extend(lifted_at_edges(path, prep));
     warnings.extend(connections_leaving(path, prep.options));
     warnings.extend(connections_crossing(path, prep.options));
     let summary = measure(prep, laid, blocks, &route, path, prep.options.machine());
@@ -564,19 +564,20 @@ fn turns_leaving(path: &Path, options: &PlanOptions) -> Option<Warning> {
     ))
 }
 
-/// Lifted stretches shorter than this in all (metres) are not worth a warning: a pass's chord a
-/// centimetre too close to an obstacle.
+/// Lifted stretches shorter than this in all (metres) are not worth a warning: a chord a
+/// centimetre too close to the boundary.
 const LIFTED_AT_EDGES_WARNED_M: f64 = 1.0;
 
-/// The warning for the swaths and passes lifted where the implement would reach out of the
-/// field or over an obstacle.
-fn lifted_at_edges(path: &Path, route: &Route, swaths: &Swaths) -> Option<Warning> {
-    let lifted = crate::path::lift::lifted_at_edges_m(path, route, swaths);
+/// The warning for the swaths and passes lifted where the implement would reach past the
+/// field's boundary.
+fn lifted_at_edges(path: &Path, prep: &Prepared) -> Option<Warning> {
+    let half = prep.options.width / 2.0;
+    let lifted = crate::path::lift::lifted_at_edges_m(path, &prep.area, half);
     (lifted >= LIFTED_AT_EDGES_WARNED_M).then(|| {
         Warning::new(
             WarningCode::ImplementLiftedAtEdges,
             format!(
-                "the implement is lifted along {} m of swaths and passes where it would reach out of the field or over an obstacle, and the crop beside is left standing; headland passes along those edges would work it",
+                "the implement is lifted along {} m of swaths and passes where it would reach past the field's boundary, and the crop beside is left standing; headland passes along those edges would work it",
                 Decimals(lifted, 0)
             ),
         )
