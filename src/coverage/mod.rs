@@ -9,11 +9,11 @@
 //! neck narrower than itself).
 //!
 //! Measured on a grid ([`raster`]) of cells a sixth of the working width across, at most
-//! [`MAX_CELL_M`] (coarser on large fields, so that the grid holds at most [`MAX_CELLS`]): the field, the strips as driven
-//! and the field opened by the implement's half width ([`crate::headland::offset::open`]) are
-//! drawn on it. The figures are exact to a fraction of a cell along each outline; the crop left
-//! standing is given as polygons ([`outline`]) of the parts larger than a quarter of a working
-//! width squared.
+//! [`MAX_CELL_M`] (coarser on large fields, so that the grid holds at most [`MAX_CELLS`]): the
+//! field, the strips as driven and the field opened by the implement's half width (inset as a
+//! polygon, swept round by the half width again on the grid) are drawn on it. The figures are
+//! exact to a fraction of a cell along each outline; the crop left standing is given as polygons
+//! ([`outline`]) of the parts larger than a quarter of a working width squared.
 
 pub mod outline;
 pub mod raster;
@@ -21,7 +21,7 @@ pub mod raster;
 use crate::field::Field;
 use crate::geometry::BooleanOps;
 use crate::geometry::Extremes;
-use crate::headland::offset::open;
+use crate::headland::offset::inset;
 use crate::path::Path;
 use crate::sort::SharedSort;
 use geo::{BoundingRect, Coord, MultiPolygon, Polygon};
@@ -226,18 +226,7 @@ impl Tally {
                     counts[i] = counts[i].saturating_add(1);
                 }
             };
-            for (n, w) in line.windows(2).enumerate() {
-                grid.fill_strip(w[0], w[1], half, &mut mark);
-                // The implement swings round a point where the line turns: round the whole
-                // disc at a sharp turn, over the wedges between the strips at a slight one.
-                if let Some(&next) = line.get(n + 2) {
-                    if turn_angle(w[0], w[1], next) > SWING_ANGLE {
-                        grid.fill_disc(w[1], half, &mut mark);
-                    } else {
-                        grid.fill_wedge(w[0], w[1], next, half, &mut mark);
-                    }
-                }
-            }
+            sweep(grid, line, half, &mut mark);
         }
     }
 
@@ -296,7 +285,10 @@ fn turn_angle(a: Coord, b: Coord, c: Coord) -> f64 {
 }
 
 /// The cells of the field a strip of half-width `radius` can reach: those of the field opened by
-/// a disc of that radius (a plan reaches whatever it works besides).
+/// a disc of that radius (a plan reaches whatever it works besides). The opening is the field
+/// inset by the radius and swept round by the disc again: the inset's inside and the sweep along
+/// its outline are drawn on the grid rather than offset outwards as polygons, which costs a
+/// buffer of every arc the inset has.
 fn opened_cells(
     grid: &Grid,
     boundary: &Polygon,
@@ -310,10 +302,35 @@ fn opened_cells(
         boundary.difference(&MultiPolygon::new(obstacles.to_vec()))
     };
     let mut opened = vec![false; grid.len()];
-    for polygon in &open(&region, radius).0 {
-        grid.fill_polygon(polygon, &mut |i| opened[i] |= field[i]);
+    let mut mark = |i: usize| opened[i] |= field[i];
+    for polygon in &inset(&region, radius).0 {
+        grid.fill_polygon(polygon, &mut mark);
+        for ring in std::iter::once(polygon.exterior()).chain(polygon.interiors()) {
+            let mut line = ring.0.clone();
+            // Round the ring's first corner too: the line closed on its second point.
+            if let Some(&second) = ring.0.get(1) {
+                line.push(second);
+            }
+            sweep(grid, &line, radius, &mut mark);
+        }
     }
     opened
+}
+
+/// Calls `mark` with every cell a strip of half-width `half` sweeps along `line`: the strip of
+/// each edge and, where the line turns, the swing round the point between them (round the whole
+/// disc at a sharp turn, over the wedges between the strips at a slight one).
+fn sweep(grid: &Grid, line: &[Coord], half: f64, mark: &mut dyn FnMut(usize)) {
+    for (n, w) in line.windows(2).enumerate() {
+        grid.fill_strip(w[0], w[1], half, mark);
+        if let Some(&next) = line.get(n + 2) {
+            if turn_angle(w[0], w[1], next) > SWING_ANGLE {
+                grid.fill_disc(w[1], half, mark);
+            } else {
+                grid.fill_wedge(w[0], w[1], next, half, mark);
+            }
+        }
+    }
 }
 
 fn figures(grid: &Grid, field: &[bool], counts: &[u8], reachable: &[bool], width: f64) -> Coverage {
@@ -376,7 +393,7 @@ fn standing_parts(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use geo::{coord, polygon};
+    use geo::{coord, polygon, Distance, Euclidean};
 
     #[test]
     fn a_round_drawn_as_many_short_edges_is_worked_in_full() {
@@ -397,6 +414,44 @@ mod tests {
             "{} m² worked of {annulus}",
             c.covered_area_m2
         );
+    }
+
+    #[test]
+    fn the_reach_drawn_on_the_grid_is_the_opened_polygon() {
+        // A field with a notch and a pond with a sharp corner, opened by 4 m: the cells the
+        // inset swept round on the grid marks are those inside the opening computed as polygons
+        // (inset and outset by i_overlay), but for cells a hair from its outline.
+        let field = polygon![
+            (x: 0., y: 0.), (x: 120., y: 0.), (x: 120., y: 80.), (x: 70., y: 80.),
+            (x: 60., y: 30.), (x: 50., y: 80.), (x: 0., y: 80.)
+        ];
+        let pond = polygon![(x: 20., y: 20.), (x: 40., y: 25.), (x: 22., y: 50.)];
+        let grid = Grid::over(field.bounding_rect().unwrap(), 0.5, 1_000_000);
+        let cells = field_cells(&grid, &field, std::slice::from_ref(&pond));
+        let drawn = opened_cells(&grid, &field, std::slice::from_ref(&pond), &cells, 4.0);
+        let region = field.difference(&MultiPolygon::new(vec![pond]));
+        let opening = crate::headland::offset::open(&region, 4.0);
+        let mut by_polygons = vec![false; grid.len()];
+        for p in &opening.0 {
+            grid.fill_polygon(p, &mut |i| by_polygons[i] = cells[i]);
+        }
+        let outline = geo::MultiLineString::new(
+            opening
+                .0
+                .iter()
+                .flat_map(|p| std::iter::once(p.exterior()).chain(p.interiors()))
+                .cloned()
+                .collect(),
+        );
+        let mut inside = 0;
+        for i in 0..grid.len() {
+            inside += usize::from(by_polygons[i]);
+            if drawn[i] != by_polygons[i] {
+                let d = Euclidean.distance(&geo::Point::from(grid.centre(i)), &outline);
+                assert!(d < 0.02, "cell {i} at {d} m from the opening's outline");
+            }
+        }
+        assert!(inside > 10_000, "{inside}");
     }
 
     #[test]
