@@ -27,6 +27,7 @@ use crate::sort::SharedSort;
 use geo::{BoundingRect, Coord, MultiPolygon, Polygon};
 use raster::Grid;
 use serde::Serialize;
+use std::ops::Range;
 
 /// Most cells of the coverage grid: its cells grow beyond a sixth of the width where the field
 /// would need more (a 50 ha field worked at 6 m has cells of 1 m).
@@ -215,15 +216,17 @@ impl Tally {
         for line in worked {
             let k = *lines;
             *lines = lines.wrapping_add(1);
-            let mut mark = |i: usize| {
-                if !field[i] {
-                    if !off_field[i] {
-                        off_field[i] = true;
-                        *outside += 1;
+            let mut mark = |cells: Range<usize>| {
+                for i in cells {
+                    if !field[i] {
+                        if !off_field[i] {
+                            off_field[i] = true;
+                            *outside += 1;
+                        }
+                    } else if last[i] != k {
+                        last[i] = k;
+                        counts[i] = counts[i].saturating_add(1);
                     }
-                } else if last[i] != k {
-                    last[i] = k;
-                    counts[i] = counts[i].saturating_add(1);
                 }
             };
             sweep(grid, line, half, &mut mark);
@@ -232,17 +235,11 @@ impl Tally {
 
     /// The figures of the lines added so far.
     pub fn coverage(&self) -> Coverage {
-        let reachable: Vec<bool> = self
-            .opened
-            .iter()
-            .zip(&self.counts)
-            .map(|(&o, &c)| o || c > 0)
-            .collect();
         let mut coverage = figures(
             &self.grid,
             &self.field,
             &self.counts,
-            &reachable,
+            &self.opened,
             self.width,
         );
         coverage.outside_area_m2 = self.outside as f64 * self.grid.cell_area();
@@ -269,9 +266,9 @@ pub fn worked_lines(path: &Path) -> Vec<Vec<Coord>> {
 /// Which cells are in the field and off its obstacles.
 fn field_cells(grid: &Grid, boundary: &Polygon, obstacles: &[Polygon]) -> Vec<bool> {
     let mut field = vec![false; grid.len()];
-    grid.fill_polygon(boundary, &mut |i| field[i] = true);
+    grid.fill_polygon(boundary, &mut |cells| field[cells].fill(true));
     for o in obstacles {
-        grid.fill_polygon(o, &mut |i| field[i] = false);
+        grid.fill_polygon(o, &mut |cells| field[cells].fill(false));
     }
     field
 }
@@ -302,7 +299,11 @@ fn opened_cells(
         boundary.difference(&MultiPolygon::new(obstacles.to_vec()))
     };
     let mut opened = vec![false; grid.len()];
-    let mut mark = |i: usize| opened[i] |= field[i];
+    let mut mark = |cells: Range<usize>| {
+        for i in cells {
+            opened[i] |= field[i];
+        }
+    };
     for polygon in &inset(&region, radius).0 {
         grid.fill_polygon(polygon, &mut mark);
         for ring in std::iter::once(polygon.exterior()).chain(polygon.interiors()) {
@@ -320,7 +321,7 @@ fn opened_cells(
 /// Calls `mark` with every cell a strip of half-width `half` sweeps along `line`: the strip of
 /// each edge and, where the line turns, the swing round the point between them (round the whole
 /// disc at a sharp turn, over the wedges between the strips at a slight one).
-fn sweep(grid: &Grid, line: &[Coord], half: f64, mark: &mut dyn FnMut(usize)) {
+fn sweep(grid: &Grid, line: &[Coord], half: f64, mark: &mut dyn FnMut(Range<usize>)) {
     for (n, w) in line.windows(2).enumerate() {
         grid.fill_strip(w[0], w[1], half, mark);
         if let Some(&next) = line.get(n + 2) {
@@ -333,28 +334,35 @@ fn sweep(grid: &Grid, line: &[Coord], half: f64, mark: &mut dyn FnMut(usize)) {
     }
 }
 
-fn figures(grid: &Grid, field: &[bool], counts: &[u8], reachable: &[bool], width: f64) -> Coverage {
+/// The figures of a tally: `counts` of the lines over each cell, in the `field` or not, within
+/// reach by the field's `opened` cells or by being worked.
+fn figures(grid: &Grid, field: &[bool], counts: &[u8], opened: &[bool], width: f64) -> Coverage {
+    let (mut in_field, mut covered, mut twice, mut reached) = (0usize, 0usize, 0usize, 0usize);
+    for ((&f, &c), &o) in field.iter().zip(counts).zip(opened) {
+        in_field += usize::from(f);
+        covered += usize::from(c > 0);
+        twice += usize::from(c > 1);
+        reached += usize::from(o || c > 0);
+    }
     let a = grid.cell_area();
-    let count = |f: &dyn Fn(usize) -> bool| (0..grid.len()).filter(|&i| f(i)).count() as f64 * a;
-    let field_area = count(&|i| field[i]);
-    let covered = count(&|i| counts[i] > 0);
-    let twice = count(&|i| counts[i] > 1);
-    let reach = count(&|i| reachable[i]);
-    let ratio = |x: f64| {
+    let field_area = in_field as f64 * a;
+    let ratio = |cells: usize| {
         if field_area > 0.0 {
-            (x / field_area).clamp(0.0, 1.0)
+            (cells as f64 * a / field_area).clamp(0.0, 1.0)
         } else {
             0.0
         }
     };
-    let uncovered = standing_parts(grid, field, counts, reachable, width);
+    // Of the crop left standing (no line over it), what is in reach is what the opening holds.
+    let uncovered = standing_parts(grid, field, counts, opened, width);
+    let covered_area = covered as f64 * a;
     Coverage {
         field_area_m2: field_area,
-        covered_area_m2: covered,
+        covered_area_m2: covered_area,
         coverage_ratio: ratio(covered),
-        reachable_ratio: ratio(reach),
+        reachable_ratio: ratio(reached),
         overlap_ratio: ratio(twice),
-        uncovered_area_m2: (field_area - covered).greater(0.0),
+        uncovered_area_m2: (field_area - covered_area).greater(0.0),
         outside_area_m2: 0.0,
         resolution_m: grid.cell,
         uncovered,
@@ -433,7 +441,11 @@ mod tests {
         let opening = crate::headland::offset::open(&region, 4.0);
         let mut by_polygons = vec![false; grid.len()];
         for p in &opening.0 {
-            grid.fill_polygon(p, &mut |i| by_polygons[i] = cells[i]);
+            grid.fill_polygon(p, &mut |r| {
+                for i in r {
+                    by_polygons[i] = cells[i];
+                }
+            });
         }
         let outline = geo::MultiLineString::new(
             opening

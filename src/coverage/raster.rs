@@ -8,6 +8,7 @@
 use crate::geometry::{Extremes, PlanarHypot};
 use crate::sort::SharedSort;
 use geo::{Coord, LineString, Polygon, Rect};
+use std::ops::Range;
 
 /// A grid of `columns` by `rows` square cells of side `cell` metres, the first cell's lower-left
 /// corner at `origin`; cell `(i, j)` (column, row) is at index `j * columns + i`.
@@ -94,9 +95,9 @@ impl Grid {
         (first.min(last) as usize)..(last as usize)
     }
 
-    /// Calls `visit` with the index of each cell whose centre lies in the polygon (even-odd over
-    /// its rings).
-    pub fn fill_polygon(&self, polygon: &Polygon, visit: &mut dyn FnMut(usize)) {
+    /// Calls `visit` with the indices of the cells whose centres lie in the polygon (even-odd
+    /// over its rings), a row's stretch at a time.
+    pub fn fill_polygon(&self, polygon: &Polygon, visit: &mut dyn FnMut(Range<usize>)) {
         let rings = std::iter::once(polygon.exterior()).chain(polygon.interiors());
         let edges: Vec<(Coord, Coord)> = rings.flat_map(ring_edges).collect();
         self.fill_edges(edges, visit);
@@ -104,7 +105,7 @@ impl Grid {
 
     /// The even-odd fill of a set of edges, row by row: the edges crossing each row's centre
     /// line, in order across it, bound the stretches inside.
-    fn fill_edges(&self, mut edges: Vec<(Coord, Coord)>, visit: &mut dyn FnMut(usize)) {
+    fn fill_edges(&self, mut edges: Vec<(Coord, Coord)>, visit: &mut dyn FnMut(Range<usize>)) {
         // Each edge from its lower end; sorted by it, so that a row's edges are found in order.
         for e in &mut edges {
             if e.0.y > e.1.y {
@@ -135,25 +136,29 @@ impl Grid {
             }));
             xs.shared_sort_unstable_by(f64::total_cmp);
             for pair in xs.chunks_exact(2) {
-                for i in self.columns_between(pair[0], pair[1]) {
-                    visit(j * self.columns + i);
-                }
+                self.visit_row(j, self.columns_between(pair[0], pair[1]), visit);
             }
         }
     }
 
-    /// Calls `visit` with each cell whose centre lies within `half_width` of the segment from
-    /// `a` to `b` measured square to it, and between its ends: the strip an implement of twice
-    /// that width sweeps along it.
-    pub fn fill_strip(&self, a: Coord, b: Coord, half_width: f64, visit: &mut dyn FnMut(usize)) {
+    /// Calls `visit` with the cells (a row's stretch at a time) whose centres lie within
+    /// `half_width` of the segment from `a` to `b` measured square to it, and between its ends:
+    /// the strip an implement of twice that width sweeps along it.
+    pub fn fill_strip(
+        &self,
+        a: Coord,
+        b: Coord,
+        half_width: f64,
+        visit: &mut dyn FnMut(Range<usize>),
+    ) {
         if let Some(n) = side_offset(a, b, half_width) {
             self.fill_convex(&[a + n, b + n, b - n, a - n], visit);
         }
     }
 
-    /// Calls `visit` with each cell in the wedges the strips of half-width `half_width` along
-    /// `a`→`b` and `b`→`c` leave open at `b`, on either side: the triangles between `b` and the
-    /// corners of the two strips' ends there. For a line turning slightly at `b` they are the
+    /// Calls `visit` with the cells (a row's stretch at a time) in the wedges the strips of
+    /// half-width `half_width` along `a`→`b` and `b`→`c` leave open at `b`, on either side: the
+    /// triangles between `b` and the corners of the two strips' ends there. For a line turning slightly at `b` they are the
     /// implement's sweep round `b` within a hair (a sector of angle θ and its triangle differ by
     /// about r²θ³/12), so that a curve drawn as many short edges is worked in full.
     ///
@@ -166,7 +171,7 @@ impl Grid {
     /// let (a, b) = (coord! { x: -10., y: 0. }, coord! { x: 0., y: 0. });
     /// let c = coord! { x: 10. * 0.02f64.cos(), y: 10. * 0.02f64.sin() };
     /// let mut cells = 0;
-    /// grid.fill_wedge(a, b, c, 12.0, &mut |_| cells += 1);
+    /// grid.fill_wedge(a, b, c, 12.0, &mut |r| cells += r.len());
     /// let area = cells as f64 * grid.cell_area();
     /// assert!((area - 2.0 * 144.0 * 0.02 / 2.0).abs() < 0.5, "{area}");
     /// ```
@@ -176,7 +181,7 @@ impl Grid {
         b: Coord,
         c: Coord,
         half_width: f64,
-        visit: &mut dyn FnMut(usize),
+        visit: &mut dyn FnMut(Range<usize>),
     ) {
         let (Some(n1), Some(n2)) = (side_offset(a, b, half_width), side_offset(b, c, half_width))
         else {
@@ -186,22 +191,21 @@ impl Grid {
         self.fill_convex(&[b, b - n1, b - n2], visit);
     }
 
-    /// Calls `visit` with each cell whose centre lies within `radius` of `c`.
-    pub fn fill_disc(&self, c: Coord, radius: f64, visit: &mut dyn FnMut(usize)) {
+    /// Calls `visit` with the cells (a row's stretch at a time) whose centres lie within
+    /// `radius` of `c`.
+    pub fn fill_disc(&self, c: Coord, radius: f64, visit: &mut dyn FnMut(Range<usize>)) {
         if radius.is_nan() || radius <= 0.0 {
             return;
         }
         for j in self.rows_between(c.y - radius, c.y + radius) {
             let dy = self.row_y(j) - c.y;
             let half = (radius * radius - dy * dy).max(0.0).sqrt();
-            for i in self.columns_between(c.x - half, c.x + half) {
-                visit(j * self.columns + i);
-            }
+            self.visit_row(j, self.columns_between(c.x - half, c.x + half), visit);
         }
     }
 
     /// The cells of a convex polygon (its corners in order, either way round).
-    fn fill_convex(&self, corners: &[Coord], visit: &mut dyn FnMut(usize)) {
+    fn fill_convex(&self, corners: &[Coord], visit: &mut dyn FnMut(Range<usize>)) {
         let (low, high) = corners
             .iter()
             .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), c| {
@@ -227,10 +231,16 @@ impl Grid {
                 }
             }
             if x0 <= x1 {
-                for i in self.columns_between(x0, x1) {
-                    visit(j * self.columns + i);
-                }
+                self.visit_row(j, self.columns_between(x0, x1), visit);
             }
+        }
+    }
+
+    /// Calls `visit` with the indices of `columns` in row `j`, if any.
+    fn visit_row(&self, j: usize, columns: Range<usize>, visit: &mut dyn FnMut(Range<usize>)) {
+        if !columns.is_empty() {
+            let row = j * self.columns;
+            visit(row + columns.start..row + columns.end);
         }
     }
 
@@ -273,9 +283,9 @@ mod tests {
     use super::*;
     use geo::{coord, polygon, Area, BoundingRect};
 
-    fn count(grid: &Grid, f: impl Fn(&Grid, &mut dyn FnMut(usize))) -> usize {
+    fn count(grid: &Grid, f: impl Fn(&Grid, &mut dyn FnMut(Range<usize>))) -> usize {
         let mut n = 0;
-        f(grid, &mut |_| n += 1);
+        f(grid, &mut |r| n += r.len());
         n
     }
 
