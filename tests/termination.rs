@@ -53,6 +53,21 @@ fn cases() -> Vec<Case> {
             options: || json!({"coordinates": "metric", "headlandPasses": 0}),
         },
         Case {
+            name: "small_obstacles_5000",
+            field: || small_obstacles(5_000, 12.0),
+            options: || json!({"coordinates": "metric"}),
+        },
+        Case {
+            name: "small_obstacles_10000",
+            field: || small_obstacles(10_000, 12.0),
+            options: || json!({"coordinates": "metric"}),
+        },
+        Case {
+            name: "small_obstacles_49000",
+            field: || small_obstacles(49_000, 5.5),
+            options: || json!({"coordinates": "metric"}),
+        },
+        Case {
             name: "holes_1000",
             field: holes_field,
             options: || json!({"coordinates": "metric", "width": 3}),
@@ -156,6 +171,30 @@ fn obstacle_grid(columns: usize, rows: usize) -> String {
                 &[rectangle_ring(x, y, x + side, y + side)],
             ));
         }
+    }
+    collection(&features)
+}
+
+/// A 158 ha rectangle (1,580 x 1,000 m, local metres) with `count` small triangular obstacles
+/// (0.5 m from centre to corner: class A at the default width) `pitch` metres apart, row by row
+/// from 20 m inside the boundary.
+fn small_obstacles(count: usize, pitch: f64) -> String {
+    let (w, h, margin) = (1_580.0, 1_000.0, 20.0);
+    let mut features = vec![feature("boundary", &[rectangle_ring(0.0, 0.0, w, h)])];
+    let columns = ((w - 2.0 * margin) / pitch) as usize + 1;
+    let rows = ((h - 2.0 * margin) / pitch) as usize + 1;
+    let corners = [90.0f64, 210.0, 330.0].map(f64::to_radians);
+    for k in 0..count.min(columns * rows) {
+        let (x, y) = (
+            margin + pitch * (k / rows) as f64,
+            margin + pitch * (k % rows) as f64,
+        );
+        let mut ring: Vec<[f64; 2]> = corners
+            .iter()
+            .map(|a| [x + 0.5 * a.cos(), y + 0.5 * a.sin()])
+            .collect();
+        ring.push(ring[0]);
+        features.push(feature("obstacle", &[ring]));
     }
     collection(&features)
 }
