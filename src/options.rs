@@ -188,6 +188,11 @@ fn place_wanted(name: &str, coordinates: Coordinates) -> String {
 /// millimetre on any machine, and the turns those of plain arcs.
 pub const MAX_CURVATURE_RATE: f64 = 1000.0;
 
+/// The longest clothoid accepted from straight to the tightest turn, metres (`1 / (turnRadius ·
+/// curvatureRate)`): no machine takes a kilometre to steer, and the path's turns grow with it
+/// (a plan of a 2 ha rectangle took 30 s with a 1,000 km clothoid).
+pub const MAX_CLOTHOID_M: f64 = 1000.0;
+
 /// Bounds of `sampleSpacing`, metres: a centimetre (a 200 ha plan is then some ten million
 /// points) to 100 m.
 pub const MIN_SAMPLE_SPACING_M: f64 = 0.01;
@@ -534,6 +539,19 @@ impl PlanOptions {
                     ),
                 );
             }
+            let least = 1.0 / (MAX_CLOTHOID_M * self.turn_radius);
+            if self.turn_radius > 0.0 && c < least {
+                return out_of_range(
+                    "curvatureRate",
+                    Shortest(c).to_string(),
+                    &format!(
+                        "at least {} per square metre with a turning radius of {} m (a clothoid from straight to the tightest turn at most {} km long)",
+                        Shortest(least),
+                        Shortest(self.turn_radius),
+                        Shortest(MAX_CLOTHOID_M / 1000.0)
+                    ),
+                );
+            }
         }
         if !(self.sample_spacing.is_finite()
             && (MIN_SAMPLE_SPACING_M..=MAX_SAMPLE_SPACING_M).contains(&self.sample_spacing))
@@ -801,6 +819,7 @@ mod tests {
             r#"{"workingSpeed": 0.09}"#,
             r#"{"turningSpeed": 1e-300}"#,
             r#"{"turningSpeed": 100}"#,
+            r#"{"turnRadius": 2, "curvatureRate": 5e-7}"#,
         ] {
             let e = PlanOptions::from_json_str(text).unwrap_err();
             assert_eq!(e.code, ErrorCode::OptionOutOfRange, "{text}");

@@ -123,6 +123,11 @@ fn cases() -> Vec<Case> {
             options: || json!({"width": 0.5}),
         },
         Case {
+            name: "clothoid_1000km",
+            field: || rectangle(200.0, 100.0),
+            options: || json!({"coordinates": "metric", "turnRadius": 2, "curvatureRate": 5e-7}),
+        },
+        Case {
             name: "swaths_100000_short",
             field: || rectangle(9_990.0, 60.0),
             options: || json!({"coordinates": "metric", "width": 0.1, "bearing": 0}),

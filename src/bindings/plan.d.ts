@@ -186,7 +186,9 @@ export interface PlanOptions {
   exit?: Position | null;
   /** Whether the machine may reverse in turns (three-point turns, Reeds-Shepp paths). Default false. */
   reverse?: boolean;
-  /** Largest change of curvature per metre driven (1/m²): turns get clothoid transitions. Default none. */
+  /** Largest change of curvature per metre driven (1/m²): turns get clothoid transitions. At most
+   * 1000 and at least 1 / (1000 × turnRadius): steering from straight to the tightest turn takes at
+   * most a kilometre. Default none. */
   curvatureRate?: number | null;
   /** Distance between the points of the sampled path, metres. Default 0.5. */
   sampleSpacing?: number;
