@@ -546,12 +546,17 @@ impl Area {
         if !(low[0] <= high[0] && low[1] <= high[1]) {
             return true;
         }
-        let near: Vec<Line> = self
+        let mut near: Vec<Line> = Vec::new();
+        for e in self
             .edges
             .locate_in_envelope_intersecting(&AABB::from_corners(low, high))
             .filter(|e| e.line >= from)
-            .map(Edge::as_line)
-            .collect();
+        {
+            if near.len() == NEAR_EDGES_MAX {
+                return self.crosses_none_chordwise(segments, from);
+            }
+            near.push(e.as_line());
+        }
         if near.is_empty() {
             return true;
         }
@@ -603,7 +608,39 @@ impl Area {
         }
         true
     }
+
+    /// [`Area::crosses_none_from`] for a run near more than [`NEAR_EDGES_MAX`] edges (a long
+    /// run beside an outline of many thousand vertices): each chord asks the tree for the edges
+    /// near it, rather than every chord being measured against every edge near the run.
+    fn crosses_none_chordwise(&self, segments: &[Segment], from: usize) -> bool {
+        let mut previous: Option<Coord> = None;
+        for s in segments {
+            for p in s.poses().evenly(s.length, chord_count(s)) {
+                let p = Coord { x: p.x, y: p.y };
+                if let Some(a) = previous {
+                    let chord = Line::new(a, p);
+                    let (low, high) = (
+                        [a.x.lesser(p.x), a.y.lesser(p.y)],
+                        [a.x.greater(p.x), a.y.greater(p.y)],
+                    );
+                    let crossed = self
+                        .edges
+                        .locate_in_envelope_intersecting(&AABB::from_corners(low, high))
+                        .any(|e| e.line >= from && segments_intersect(&chord, &e.as_line()));
+                    if crossed {
+                        return false;
+                    }
+                }
+                previous = Some(p);
+            }
+        }
+        true
+    }
 }
+
+/// The most edges near a run of segments that [`Area::crosses_none_from`] measures every chord
+/// against; near more, each chord asks the tree for its own.
+const NEAR_EDGES_MAX: usize = 64;
 
 /// Arcs of a radius up to this (metres) are checked against the edges near their ring; flatter
 /// ones chord by chord.
@@ -795,6 +832,31 @@ mod tests {
                 curvature_rate: clothoids.then_some(0.2),
                 ..Vehicle::default()
             };
+            let from = Pose::new(x, y, heading);
+            let to = Pose::new(x + dx, y + dy, heading + turn);
+            for t in v.candidates(from, to) {
+                prop_assert_eq!(area.contains(&t.segments), contains_chord_by_chord(&area, &t.segments));
+            }
+        }
+
+        /// Near an outline of many short edges (more than [`NEAR_EDGES_MAX`] near a turn) each
+        /// chord asks the tree for its own edges: the same answer as every chord against every
+        /// edge.
+        #[test]
+        fn chords_near_many_edges_are_checked_as_against_all(
+            x in -30.0..30.0f64, y in -30.0..30.0f64, heading in -PI..PI,
+            dx in -25.0..25.0f64, dy in -25.0..25.0f64, turn in -PI..PI,
+            radius in 2.0..12.0f64, reverse: bool, edge in 5.0..40.0f64,
+        ) {
+            // The east side a wavy line of 600 edges 0.2 m apart.
+            let mut ring: Vec<Coord> = vec![Coord { x: -60.0, y: -60.0 }];
+            ring.extend((0..=600).map(|k| Coord {
+                x: edge + 0.3 * (k as f64 * 0.7).sin(),
+                y: -60.0 + 0.2 * k as f64,
+            }));
+            ring.push(Coord { x: -60.0, y: 60.0 });
+            let area = Area::new(&Polygon::new(LineString::new(ring), vec![]), &[]);
+            let v = Vehicle { turn_radius: radius, reverse, ..Vehicle::default() };
             let from = Pose::new(x, y, heading);
             let to = Pose::new(x + dx, y + dy, heading + turn);
             for t in v.candidates(from, to) {
