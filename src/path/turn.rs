@@ -553,7 +553,12 @@ impl Area {
             .filter(|e| e.line >= from)
         {
             if near.len() == NEAR_EDGES_MAX {
-                return self.crosses_none_chordwise(segments, from);
+                return match segments {
+                    [one] => self.crosses_none_chordwise(one, from),
+                    _ => segments
+                        .iter()
+                        .all(|s| self.crosses_none_from(std::slice::from_ref(s), from)),
+                };
             }
             near.push(e.as_line());
         }
@@ -609,38 +614,45 @@ impl Area {
         true
     }
 
-    /// [`Area::crosses_none_from`] for a run near more than [`NEAR_EDGES_MAX`] edges (a long
-    /// run beside an outline of many thousand vertices): each chord asks the tree for the edges
-    /// near it, rather than every chord being measured against every edge near the run.
-    fn crosses_none_chordwise(&self, segments: &[Segment], from: usize) -> bool {
-        let mut previous: Option<Coord> = None;
-        for s in segments {
-            for p in s.poses().evenly(s.length, chord_count(s)) {
-                let p = Coord { x: p.x, y: p.y };
-                if let Some(a) = previous {
-                    let chord = Line::new(a, p);
-                    let (low, high) = (
-                        [a.x.lesser(p.x), a.y.lesser(p.y)],
-                        [a.x.greater(p.x), a.y.greater(p.y)],
-                    );
-                    let crossed = self
-                        .edges
-                        .locate_in_envelope_intersecting(&AABB::from_corners(low, high))
-                        .any(|e| e.line >= from && segments_intersect(&chord, &e.as_line()));
-                    if crossed {
-                        return false;
-                    }
-                }
-                previous = Some(p);
+    /// [`Area::crosses_none_from`] for one segment near more than [`NEAR_EDGES_MAX`] edges (a
+    /// segment along an outline of thousands of vertices): its chords taken [`CHORD_GROUP`] at a
+    /// time, each group measured against the edges the tree finds near it, rather than every
+    /// chord against every edge near the segment.
+    fn crosses_none_chordwise(&self, s: &Segment, from: usize) -> bool {
+        let points: Vec<Coord> = s
+            .poses()
+            .evenly(s.length, chord_count(s))
+            .map(|p| Coord { x: p.x, y: p.y })
+            .collect();
+        let mut near: Vec<Line> = Vec::new();
+        for group in points.windows(2).collect::<Vec<_>>().chunks(CHORD_GROUP) {
+            let (mut low, mut high) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+            for p in group.iter().flat_map(|w| w.iter()) {
+                low = [low[0].lesser(p.x), low[1].lesser(p.y)];
+                high = [high[0].greater(p.x), high[1].greater(p.y)];
+            }
+            near.clear();
+            near.extend(
+                self.edges
+                    .locate_in_envelope_intersecting(&AABB::from_corners(low, high))
+                    .filter(|e| e.line >= from)
+                    .map(Edge::as_line),
+            );
+            if group.iter().any(|w| crosses_any(&near, w[0], w[1])) {
+                return false;
             }
         }
         true
     }
 }
 
+/// How many chords of a segment near many edges ask the tree together.
+const CHORD_GROUP: usize = 8;
+
 /// The most edges near a run of segments that [`Area::crosses_none_from`] measures every chord
-/// against; near more, each chord asks the tree for its own.
-const NEAR_EDGES_MAX: usize = 64;
+/// against; near more, each segment is measured on its own, and a single segment a few chords at
+/// a time.
+const NEAR_EDGES_MAX: usize = 256;
 
 /// Arcs of a radius up to this (metres) are checked against the edges near their ring; flatter
 /// ones chord by chord.
@@ -840,7 +852,8 @@ mod tests {
         }
 
         /// Near an outline of many short edges (more than [`NEAR_EDGES_MAX`] near a turn) each
-        /// chord asks the tree for its own edges: the same answer as every chord against every
+        /// segment is measured on its own, and one near as many a few chords at a time against
+        /// the edges the tree finds near them: the same answer as every chord against every
         /// edge.
         #[test]
         fn chords_near_many_edges_are_checked_as_against_all(
