@@ -625,9 +625,11 @@ impl Area {
             .map(|p| Coord { x: p.x, y: p.y })
             .collect();
         let mut near: Vec<Line> = Vec::new();
-        for group in points.windows(2).collect::<Vec<_>>().chunks(CHORD_GROUP) {
+        let mut first = 0;
+        while first + 1 < points.len() {
+            let group = &points[first..points.len().min(first + CHORD_GROUP + 1)];
             let (mut low, mut high) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
-            for p in group.iter().flat_map(|w| w.iter()) {
+            for p in group {
                 low = [low[0].lesser(p.x), low[1].lesser(p.y)];
                 high = [high[0].greater(p.x), high[1].greater(p.y)];
             }
@@ -638,9 +640,10 @@ impl Area {
                     .filter(|e| e.line >= from)
                     .map(Edge::as_line),
             );
-            if group.iter().any(|w| crosses_any(&near, w[0], w[1])) {
+            if group.windows(2).any(|w| crosses_any(&near, w[0], w[1])) {
                 return false;
             }
+            first += CHORD_GROUP;
         }
         true
     }
