@@ -158,9 +158,10 @@ impl Grid {
 
     /// Calls `visit` with the cells (a row's stretch at a time) in the wedges the strips of
     /// half-width `half_width` along `a`→`b` and `b`→`c` leave open at `b`, on either side: the
-    /// triangles between `b` and the corners of the two strips' ends there. For a line turning slightly at `b` they are the
-    /// implement's sweep round `b` within a hair (a sector of angle θ and its triangle differ by
-    /// about r²θ³/12), so that a curve drawn as many short edges is worked in full.
+    /// triangles between `b` and the corners of the two strips' ends there. For a line turning
+    /// slightly at `b` they are the implement's sweep round `b` within a hair (a sector of angle θ
+    /// and its triangle differ by about r²θ³/12), so that a curve drawn as many short edges is
+    /// worked in full.
     ///
     /// ```
     /// use furrow::coverage::raster::Grid;
