@@ -359,6 +359,10 @@ pub const OPTION_DOCS: &[(&str, &str, &str)] = &[
     ),
 ];
 
+/// [`PlanOptions::default`] as JSON text, as `serde_json` writes it (a test checks): the npm
+/// package's `defaultOptions` parses it rather than carrying the options' writer.
+pub const DEFAULT_OPTIONS_JSON: &str = r#"{"width":6.0,"headlandPasses":2,"headlandMode":"constant","headlandTolerance":5.0,"edgePasses":[],"headlandOrder":"last","obstacleThreshold":null,"turnRadius":8.0,"direction":null,"search":"coarse-to-fine","searchStep":1.0,"objective":"time","bearing":null,"referenceLine":null,"referenceEdge":null,"referenceOffset":null,"workingSpeed":8.0,"turningSpeed":5.0,"forbiddenBearings":[],"minSwathLength":null,"coordinates":"wgs84","decomposition":"auto","pattern":"auto","snakeSkip":1,"spiralSize":6,"customOrder":[],"entrance":null,"exit":null,"reverse":false,"curvatureRate":null,"sampleSpacing":0.5}"#;
+
 /// Most swaths the snake pattern may skip, and most in a spiral or custom group.
 pub const MAX_PATTERN_SWATHS: u32 = 1000;
 
@@ -593,8 +597,12 @@ impl PlanOptions {
             return Err(PlanError::new(
                 ErrorCode::InvalidOption,
                 format!(
-                    "option `customOrder` is {:?}; it must hold each of 0 to {} once",
-                    self.custom_order,
+                    "option `customOrder` is [{}]; it must hold each of 0 to {} once",
+                    self.custom_order
+                        .iter()
+                        .map(u32::to_string)
+                        .collect::<Vec<_>>()
+                        .join(", "),
                     self.custom_order.len().saturating_sub(1)
                 ),
             ));
@@ -783,6 +791,12 @@ impl PlanOptions {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_default_options_text_is_the_defaults_written() {
+        let written = serde_json::to_string(&PlanOptions::default()).unwrap();
+        assert_eq!(DEFAULT_OPTIONS_JSON, written);
+    }
 
     #[test]
     fn docs_list_exactly_the_options() {

@@ -9,7 +9,7 @@
 use super::{json_text, to_js_error};
 use crate::error::{ErrorCode, PlanError};
 use crate::field::{geojson, validate};
-use crate::options::PlanOptions;
+use crate::options::{PlanOptions, DEFAULT_OPTIONS_JSON};
 use crate::output::json::to_json_string;
 use crate::plan::plan_stages;
 use wasm_bindgen::prelude::*;
@@ -93,9 +93,7 @@ pub fn plan_js(field: JsValue, options: JsValue) -> Result<JsValue, JsValue> {
 /// The default value of every option.
 #[wasm_bindgen(js_name = defaultOptions, unchecked_return_type = "Required<PlanOptions>")]
 pub fn default_options() -> Result<JsValue, JsValue> {
-    let text =
-        to_json_string(&PlanOptions::default()).map_err(|e| JsValue::from_str(&e.to_string()))?;
-    js_sys::JSON::parse(&text)
+    js_sys::JSON::parse(DEFAULT_OPTIONS_JSON)
 }
 
 /// The version of the planner.
