@@ -5,7 +5,7 @@ use super::compiled::Compiled;
 use super::local_search::LocalSearch;
 use super::{empty_sequence, Sequence, SequenceMethod, SequenceProblem, LARGE_COST};
 use crate::rng::SplitMix64 as Rng;
-use crate::sort::SharedSort;
+use std::cmp::Ordering;
 
 /// Settings of the ant colony.
 ///
@@ -165,20 +165,24 @@ fn ant_colony(c: &Compiled, settings: &AntColony, rng: &mut Rng) -> Vec<Vec<usiz
     // Each node's candidates: the ways of other blocks cheapest to go on to, cheapest first.
     let width = CANDIDATES.min(nodes);
     let mut candidates = Vec::with_capacity(nodes * width);
-    let mut list: Vec<usize> = Vec::with_capacity(nodes);
+    let mut list: Vec<usize> = Vec::with_capacity(width + 1);
     for from in 0..nodes {
+        // The `width` cheapest, kept in order as they come (ties by index): each next way
+        // compared with the dearest kept, and only a cheaper one put in its place.
         list.clear();
-        list.extend((0..nodes).filter(|&to| block_of[to] != block_of[from]));
-        let key = |&to: &usize| (avoidable[from * nodes + to], to);
-        let by_key = |a: &usize, b: &usize| {
+        let key = |to: usize| (avoidable[from * nodes + to], to);
+        let before = |a: usize, b: usize| {
             let (ka, kb) = (key(a), key(b));
-            ka.0.total_cmp(&kb.0).then(ka.1.cmp(&kb.1))
+            ka.0.total_cmp(&kb.0).then(ka.1.cmp(&kb.1)) == Ordering::Less
         };
-        if list.len() > width {
-            list.select_nth_unstable_by(width, by_key);
+        for to in (0..nodes).filter(|&to| block_of[to] != block_of[from]) {
+            if list.len() == width && list.last().is_some_and(|&last| !before(to, last)) {
+                continue;
+            }
+            let at = list.partition_point(|&kept| before(kept, to));
+            list.insert(at, to);
             list.truncate(width);
         }
-        list.shared_sort_unstable_by(by_key);
         // Padded with `nodes` (no node) where there are fewer.
         candidates.extend(
             list.iter()
