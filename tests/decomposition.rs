@@ -453,6 +453,44 @@ fn split_merge_is_left_out_of_fields_of_too_many_cells() {
 }
 
 #[test]
+fn boustrophedon_is_left_out_where_the_sweep_would_cut_too_many_trapezoids() {
+    // A comb of 1,500 fingers 1 m wide pointing east, their tips a centimetre apart across:
+    // driving north, the slab line of each tip crosses every longer finger, some 1.1 million
+    // trapezoids (a noisy outline of 199,000 vertices at 0.1 m was 6 million: 7 s and 2 GB).
+    let mut ring = vec![[0.0, 0.0]];
+    for k in 0..1_500 {
+        let (y, tip) = (2.0 * k as f64, 100.0 + 0.01 * k as f64);
+        ring.extend([[10.0, y], [tip, y], [tip, y + 1.0], [10.0, y + 1.0]]);
+    }
+    ring.extend([[0.0, 3_000.0], [0.0, 0.0]]);
+    let text = serde_json::json!({"type": "Polygon", "coordinates": [ring]}).to_string();
+    let options = PlanOptions {
+        coordinates: furrow::field::Coordinates::Metric,
+        headland_passes: 0.into(),
+        bearing_deg: Some(0.0),
+        decomposition: Decomposition::Boustrophedon,
+        ..PlanOptions::default()
+    };
+    let e = plan_geojson(&text, &options).expect_err("refused");
+    assert_eq!(e.code, furrow::ErrorCode::FieldTooComplex, "{e}");
+    assert!(e.message.contains("trapezoids"), "{e}");
+    let auto = PlanOptions {
+        decomposition: Decomposition::Auto,
+        ..options
+    };
+    let plan = plan_geojson(&text, &auto).expect("plans");
+    let d = &plan.summary.decomposition;
+    let methods: Vec<Decomposition> = d.candidates.iter().map(|c| c.method).collect();
+    assert_eq!(methods, [Decomposition::None]);
+    assert!(
+        d.reason.contains("boustrophedon was not tried"),
+        "{}",
+        d.reason
+    );
+    assert!(!d.reason.contains("as asked"), "{}", d.reason);
+}
+
+#[test]
 fn estimated_time_counts_each_move_between_blocks_once() {
     use furrow::path::turn::CUSP_PENALTY_M;
     use furrow::path::SegmentKind;

@@ -123,6 +123,11 @@ fn cases() -> Vec<Case> {
             options: || json!({"width": 0.5}),
         },
         Case {
+            name: "star_199000_w0.1_no_headland",
+            field: || noisy_star(199_000, 400.0, 0.5, true),
+            options: || json!({"width": 0.1, "headlandPasses": 0}),
+        },
+        Case {
             name: "clothoid_1000km",
             field: || rectangle(200.0, 100.0),
             options: || json!({"coordinates": "metric", "turnRadius": 2, "curvatureRate": 5e-7}),

@@ -188,23 +188,7 @@ impl PreparedArea {
 
 /// [`split`] of a prepared area.
 pub fn split_prepared(area: &PreparedArea, frame: &SweepFrame) -> Vec<Trapezoid> {
-    let mut rings: Vec<Vec<(f64, f64)>> = Vec::with_capacity(area.rings.len());
-    let mut lines: Vec<f64> = Vec::new();
-    for (ring, kept) in &area.rings {
-        let pts: Vec<(f64, f64)> = ring.iter().map(|&p| frame.project(p)).collect();
-        let n = pts.len();
-        for i in 0..n {
-            let (p, c, q) = (pts[(i + n - 1) % n].0, pts[i].0, pts[(i + 1) % n].0);
-            let monotone = (p < c - SAME_LINE_M && c < q - SAME_LINE_M)
-                || (p > c + SAME_LINE_M && c > q + SAME_LINE_M);
-            if kept[i] || !monotone {
-                lines.push(c);
-            }
-        }
-        rings.push(pts);
-    }
-    sort_floats(&mut lines);
-    lines.dedup_by(|a, b| (*a - *b).abs() <= SAME_LINE_M);
+    let (rings, lines) = slab_lines(area, frame);
     if lines.len() < 2 {
         return Vec::new();
     }
@@ -292,6 +276,48 @@ pub fn split_prepared(area: &PreparedArea, frame: &SweepFrame) -> Vec<Trapezoid>
         }
     }
     out
+}
+
+/// The area's rings in the sweep frame, and the slab lines: across every vertex the
+/// simplification keeps and every turn of direction across the sweep, sorted, one per place.
+fn slab_lines(area: &PreparedArea, frame: &SweepFrame) -> (Vec<Vec<(f64, f64)>>, Vec<f64>) {
+    let mut rings: Vec<Vec<(f64, f64)>> = Vec::with_capacity(area.rings.len());
+    let mut lines: Vec<f64> = Vec::new();
+    for (ring, kept) in &area.rings {
+        let pts: Vec<(f64, f64)> = ring.iter().map(|&p| frame.project(p)).collect();
+        let n = pts.len();
+        for i in 0..n {
+            let (p, c, q) = (pts[(i + n - 1) % n].0, pts[i].0, pts[(i + 1) % n].0);
+            let monotone = (p < c - SAME_LINE_M && c < q - SAME_LINE_M)
+                || (p > c + SAME_LINE_M && c > q + SAME_LINE_M);
+            if kept[i] || !monotone {
+                lines.push(c);
+            }
+        }
+        rings.push(pts);
+    }
+    sort_floats(&mut lines);
+    lines.dedup_by(|a, b| (*a - *b).abs() <= SAME_LINE_M);
+    (rings, lines)
+}
+
+/// About how many trapezoids [`split_prepared`] would make of `area`, without making them: half
+/// the pieces the slab lines cut its edges into. An outline noisy across the sweep has a slab
+/// line at nearly every vertex, each crossing the outline many times: the count grows with the
+/// square of its vertices.
+pub fn trapezoid_estimate(area: &PreparedArea, frame: &SweepFrame) -> usize {
+    let (rings, lines) = slab_lines(area, frame);
+    let mut pieces = 0usize;
+    for pts in &rings {
+        for (k, &a) in pts.iter().enumerate() {
+            let b = pts[(k + 1) % pts.len()];
+            let (lo, hi) = (a.0.min(b.0), a.0.max(b.0));
+            let from = lines.partition_point(|&l| l <= lo + SAME_LINE_M);
+            let to = lines.partition_point(|&l| l < hi - SAME_LINE_M);
+            pieces = pieces.saturating_add(to.saturating_sub(from) + 1);
+        }
+    }
+    pieces / 2
 }
 
 /// How trapezoids of neighbouring slabs are merged into cells.
@@ -502,6 +528,56 @@ mod tests {
 
     fn total(t: &[Trapezoid]) -> f64 {
         t.iter().map(Trapezoid::area).sum()
+    }
+
+    /// A comb of `fingers` fingers 1 m wide, 1 m apart, pointing east from a spine, their tips
+    /// a centimetre apart across: every slab line driving north crosses every finger.
+    fn comb(fingers: usize) -> MultiPolygon {
+        let mut ring = vec![Coord { x: 0.0, y: 0.0 }];
+        for k in 0..fingers {
+            let (y, tip) = (2.0 * k as f64, 100.0 + 0.01 * k as f64);
+            ring.extend([
+                Coord { x: 10.0, y },
+                Coord { x: tip, y },
+                Coord { x: tip, y: y + 1.0 },
+                Coord {
+                    x: 10.0,
+                    y: y + 1.0,
+                },
+            ]);
+        }
+        ring.push(Coord {
+            x: 0.0,
+            y: 2.0 * fingers as f64,
+        });
+        MultiPolygon::new(vec![Polygon::new(LineString::new(ring), vec![])])
+    }
+
+    #[test]
+    fn the_estimate_counts_the_trapezoids_of_the_split() {
+        let pond = polygon!(
+            exterior: [(x: 0., y: 0.), (x: 60., y: 0.), (x: 60., y: 100.), (x: 0., y: 100.)],
+            interiors: [[(x: 20., y: 40.), (x: 40., y: 40.), (x: 35., y: 60.), (x: 20., y: 55.)]],
+        );
+        for (area, bearing) in [
+            (MultiPolygon::new(vec![pond]), 0.3),
+            (comb(40), 0.0),
+            (comb(40), 1.0),
+        ] {
+            let prepared = PreparedArea::new(&area, 0.0);
+            let frame = SweepFrame::new(bearing);
+            let made = split_prepared(&prepared, &frame).len();
+            let estimate = trapezoid_estimate(&prepared, &frame);
+            assert!(
+                estimate >= made && estimate <= made + made / 10 + 4,
+                "{estimate} for {made}"
+            );
+        }
+        // Driving north, the slab line of each finger's tip crosses the fingers longer than it:
+        // n² / 2 trapezoids.
+        let estimate =
+            trapezoid_estimate(&PreparedArea::new(&comb(1_500), 0.0), &SweepFrame::new(0.0));
+        assert!(estimate > 1_100_000, "{estimate}");
     }
 
     #[test]

@@ -5,6 +5,7 @@
 
 use super::candidate::{work, Worked};
 use super::{route_settings, Prepared, DECOMPOSITION_TOLERANCE};
+use crate::decompose::boustrophedon::within_limits as boustrophedon_within_limits;
 use crate::decompose::cells::MergeRule;
 use crate::decompose::split_merge::{
     cells_at, improve, split_merge, within_limits as split_merge_within_limits, Criterion,
@@ -71,32 +72,52 @@ pub(super) fn decompositions(
     })
 }
 
-/// The decompositions to try within split and merge's limits: its work grows with the cells and
-/// vertices of the inner field, so beyond them `auto` leaves it out (and says why) and asking
-/// for it is refused.
+/// The decompositions to try within their limits: split and merge's work grows with the cells
+/// and vertices of the inner field, boustrophedon's with the trapezoids its sweep cuts the inner
+/// field into, so beyond them `auto` leaves them out (and says why, as a clause for the report)
+/// and asking for one is refused.
 pub(super) fn within_limits(
-    methods: Vec<Decomposition>,
+    mut methods: Vec<Decomposition>,
     prep: &Prepared,
 ) -> Result<(Vec<Decomposition>, Option<String>), PlanError> {
-    if !methods.contains(&Decomposition::SplitMerge) {
-        return Ok((methods, None));
-    }
     let width = prep.options.width;
     let tolerance = width * DECOMPOSITION_TOLERANCE;
-    match split_merge_within_limits(&prep.headlands.inner, prep.direction.bearing, tolerance) {
-        Ok(()) => Ok((methods, None)),
-        Err(why) if prep.options.decomposition == Decomposition::Auto => {
-            let kept = methods
-                .into_iter()
-                .filter(|&m| m != Decomposition::SplitMerge)
-                .collect();
-            Ok((kept, Some(why)))
+    let bearing = prep.direction.bearing;
+    let mut left_out: Vec<String> = Vec::new();
+    for (method, name, alternatives) in [
+        (
+            Decomposition::SplitMerge,
+            "split and merge",
+            "boustrophedon or none",
+        ),
+        (Decomposition::Boustrophedon, "boustrophedon cells", "none"),
+    ] {
+        if !methods.contains(&method) {
+            continue;
         }
-        Err(why) => Err(PlanError::new(
-            ErrorCode::FieldTooComplex,
-            format!("the field is too complex for split and merge at {} m: {why}; use decomposition boustrophedon or none, or a wider working width", Shortest(width)),
-        )),
+        let limits = match method {
+            Decomposition::SplitMerge => {
+                split_merge_within_limits(&prep.headlands.inner, bearing, tolerance)
+            }
+            _ => match &prep.single {
+                Some(single) => boustrophedon_within_limits(&single.main_area, bearing, tolerance),
+                None => Ok(()),
+            },
+        };
+        let Err(why) = limits else { continue };
+        if prep.options.decomposition != Decomposition::Auto {
+            return Err(PlanError::new(
+                ErrorCode::FieldTooComplex,
+                format!(
+                    "the field is too complex for {name} at {} m: {why}; use decomposition {alternatives}, or a wider working width",
+                    Shortest(width)
+                ),
+            ));
+        }
+        methods.retain(|&m| m != method);
+        left_out.push(format!("{} was not tried: {why}", method.as_str()));
     }
+    Ok((methods, (!left_out.is_empty()).then(|| left_out.join("; "))))
 }
 
 /// Works each decomposition of `methods` into a candidate plan, in their order.
@@ -218,8 +239,13 @@ fn reason(
     figures: &[DecompositionCandidate],
     left_out: Option<String>,
 ) -> String {
-    let mut reason = if figures.len() == 1 {
+    let mut reason = if figures.len() == 1 && left_out.is_none() {
         format!("{} as asked", chosen.as_str())
+    } else if figures.len() == 1 {
+        format!(
+            "{}, the only decomposition within its limits",
+            chosen.as_str()
+        )
     } else {
         let times: Vec<String> = figures
             .iter()
@@ -232,7 +258,7 @@ fn reason(
         )
     };
     if let Some(why) = left_out {
-        reason.push_str(&format!("; split-merge was not tried: {why}"));
+        reason.push_str(&format!("; {why}"));
     }
     reason
 }
