@@ -345,7 +345,12 @@ pub fn build_path(
             Some((from, from_block)) => {
                 let same_block = w.block.is_some() && w.block == from_block;
                 if same_block && w.into.is_none() {
-                    if let Some(t) = swath_turn(from, start, vehicle, area) {
+                    // Forward only, the forms of turn that keep in the field seldom have one
+                    // that keeps off the crop too (on the drill's register parcels, 6 of 653
+                    // turns through crop), for 3 % more planning time: the crop is minded
+                    // where the machine reverses (602 to 328).
+                    let minded = if vehicle.reverse { crop() } else { None };
+                    if let Some(t) = swath_turn(from, start, vehicle, area, minded) {
                         segments.push(t);
                     }
                 } else if let Some(c) = connection(
@@ -501,14 +506,22 @@ fn turn_segment(from: Pose, pieces: Vec<Segment>, form: TurnForm, inside: bool) 
     seg
 }
 
-/// The turn between two swath ends of a block.
-fn swath_turn(from: Pose, to: Pose, v: &Vehicle, area: Option<&Area>) -> Option<PathSegment> {
+/// The turn between two swath ends of a block: the cheapest form that keeps in the field and
+/// off `crop` (the crop standing before that route step), else the cheapest in the field.
+fn swath_turn(
+    from: Pose,
+    to: Pose,
+    v: &Vehicle,
+    area: Option<&Area>,
+    crop: Option<(&StandingCrop, usize)>,
+) -> Option<PathSegment> {
     if from.distance(&to) < MIN_CONNECTOR_M && from.heading_change(&to).abs() < 1e-9 {
         return None;
     }
-    let t = match area {
-        Some(a) => v.turn(from, to, a),
-        None => {
+    let t = match (area, crop) {
+        (Some(a), Some((crop, step))) => v.turn_clear(from, to, a, &|s| !crop.crossed(s, step)).0,
+        (Some(a), None) => v.turn(from, to, a),
+        (None, _) => {
             let mut t = v.shortest(from, to);
             t.inside = true;
             t
@@ -797,6 +810,48 @@ impl Path {
 mod tests {
     use super::*;
     use geo::coord;
+
+    #[test]
+    fn a_turn_between_swaths_keeps_off_the_crop_where_a_form_does() {
+        use crate::route::RouteStep;
+        use crate::swath::generate;
+        use geo::{polygon, MultiPolygon};
+        use std::f64::consts::{FRAC_PI_2, PI};
+        let v = Vehicle {
+            turn_radius: 5.0,
+            ..Vehicle::default()
+        };
+        let field =
+            polygon![(x: -50., y: -50.), (x: 50., y: -50.), (x: 50., y: 50.), (x: -50., y: 50.)];
+        let area = Area::new(&field, &[]);
+        // A swath 2 m wide along y = 10 from x = 1 to 9, worked at the route's first step: its
+        // crop is the line from (2, 10) to (8, 10).
+        let strip = polygon![(x: 1., y: 9.), (x: 9., y: 9.), (x: 9., y: 11.), (x: 1., y: 11.)];
+        let swaths = generate(&MultiPolygon::new(vec![strip]), FRAC_PI_2, 2.0, 2.0).unwrap();
+        assert_eq!(swaths.swaths.len(), 1);
+        let route = Route {
+            steps: vec![RouteStep::Swath {
+                swath: 0,
+                reversed: false,
+                block: 0,
+            }],
+            ..Route::default()
+        };
+        let crop = StandingCrop::of_route(&route, &swaths);
+        // A U-turn to the left, 20 m across: the cheapest (LSL) runs north along x = 5, over
+        // the crop.
+        let (from, to) = (Pose::new(0.0, 0.0, 0.0), Pose::new(0.0, 20.0, PI));
+        let cheapest = swath_turn(from, to, &v, Some(&area), None).unwrap();
+        assert!(crop.crossed(&cheapest.pieces, 0));
+        // Before the swath is worked the turn goes round the other way, still in the field; after
+        // it, the cheapest again.
+        let minded = swath_turn(from, to, &v, Some(&area), Some((&crop, 0))).unwrap();
+        assert!(minded.turn.as_ref().is_some_and(|t| t.inside));
+        assert!(!crop.crossed(&minded.pieces, 0));
+        assert!(minded.length() > cheapest.length());
+        let after = swath_turn(from, to, &v, Some(&area), Some((&crop, 1))).unwrap();
+        assert_eq!(after.pieces, cheapest.pieces);
+    }
 
     #[test]
     fn ring_restarts_at_a_point_on_an_edge() {
