@@ -108,6 +108,16 @@ fn cases() -> Vec<Case> {
             options: || json!({}),
         },
         Case {
+            name: "gnss_20000_needed_50",
+            field: || gnss_trace(20_000, 200.0),
+            options: || json!({"width": 0.1, "headlandMode": "needed", "headlandPasses": 50}),
+        },
+        Case {
+            name: "gnss_20000_r2000_needed_50",
+            field: || gnss_trace(20_000, 2_000.0),
+            options: || json!({"width": 0.1, "headlandMode": "needed", "headlandPasses": 50}),
+        },
+        Case {
             name: "gnss_199000_w1",
             field: || gnss_trace(199_000, 2_000.0),
             options: || json!({"width": 1}),
