@@ -83,6 +83,10 @@ pub struct Blocks {
     pub blocks: Vec<Block>,
 }
 
+/// Most blocks a plan's swaths may fall into (see `plan`'s check): the worst cases of
+/// `tests/termination.rs` that plan have up to about 4,000.
+pub const MAX_BLOCKS: usize = 10_000;
+
 /// Clusters swaths into blocks: within each area of [`Swaths::areas`] (all swaths as one area
 /// when it is empty), walking across line by line, a swath continues the block of the swath
 /// next to it on the previous line when each is the other's only overlapping neighbour; a split
