@@ -14,7 +14,7 @@
 //! radius, and where its outline turns back on itself (the dead end of an arm narrower than
 //! the machine turns in) a manoeuvre, a three-point turn where the machine may reverse.
 
-use super::{lanes, FillSettings, Lanes, MIN_PART_WIDTHS};
+use super::{lanes, Centres, FillSettings, Lanes, MIN_PART_WIDTHS};
 use crate::coverage::Uncovered;
 use crate::geometry::PlanarHypot;
 use crate::headland::offset::outset;
@@ -76,12 +76,13 @@ pub fn passes_along(
         return Vec::new();
     }
     let shortest = settings.min_length.max(w);
+    let centres = Centres::new(centres);
     let mut out = Vec::new();
     for u in uncovered
         .iter()
         .filter(|u| u.reachable_m2 >= MIN_PART_WIDTHS * w * w)
     {
-        let Some(Lanes { core, lanes, .. }) = lanes(&u.polygon, centres, w) else {
+        let Some(Lanes { core, lanes, .. }) = lanes(&u.polygon, &centres, w) else {
             continue;
         };
         let over = outset(&core, w / 4.0);

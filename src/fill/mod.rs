@@ -22,7 +22,7 @@ use crate::field::ProhibitedRegion;
 use crate::geometry::{bearing_of, swath_direction, BearingRange, BooleanOps, SweepFrame};
 use crate::headland::offset::{inset, outset};
 use crate::swath::{on_lines, SwathArea, Swaths};
-use geo::{Area, BoundingRect, ConvexHull, Coord, Intersects, MultiPolygon, Polygon};
+use geo::{Area, BoundingRect, ConvexHull, Coord, Intersects, MultiPolygon, Polygon, Rect};
 
 /// What the fill needs besides the parts left standing.
 #[derive(Clone, Copy)]
@@ -101,15 +101,61 @@ pub fn fill(
     if centres.0.is_empty() || w.is_nan() || w <= 0.0 {
         return Vec::new();
     }
+    let centres = Centres::new(centres);
     uncovered
         .iter()
         .filter(|u| u.reachable_m2 >= MIN_PART_WIDTHS * w * w)
-        .filter_map(|u| fill_part(&u.polygon, centres, settings))
+        .filter_map(|u| fill_part(&u.polygon, &centres, settings))
         .collect()
 }
 
+/// Where a strip's centre line may run, with the bounding boxes of its polygons and their holes
+/// worked out once for all the parts ([`lanes`] takes the holes near a part: a field of 2,000
+/// ponds is one polygon with 2,000 holes, and the parts left between their passes thousands).
+pub(crate) struct Centres<'a> {
+    region: &'a MultiPolygon,
+    boxes: Vec<(Option<Rect>, Vec<Option<Rect>>)>,
+}
+
+impl<'a> Centres<'a> {
+    pub(crate) fn new(region: &'a MultiPolygon) -> Self {
+        let boxes = region
+            .0
+            .iter()
+            .map(|p| {
+                let holes = p.interiors().iter().map(|h| h.bounding_rect()).collect();
+                (p.bounding_rect(), holes)
+            })
+            .collect();
+        Centres { region, boxes }
+    }
+
+    /// The polygons whose boxes meet `area`, with only their holes whose boxes meet it.
+    fn near(&self, area: &Rect) -> MultiPolygon {
+        let meets = |b: &Option<Rect>| b.is_some_and(|b| b.intersects(area));
+        let polygons = self
+            .region
+            .0
+            .iter()
+            .zip(&self.boxes)
+            .filter(|(_, (outer, _))| meets(outer))
+            .map(|(p, (_, holes))| {
+                let holes = p
+                    .interiors()
+                    .iter()
+                    .zip(holes)
+                    .filter(|(_, b)| meets(b))
+                    .map(|(h, _)| h.clone())
+                    .collect();
+                Polygon::new(p.exterior().clone(), holes)
+            })
+            .collect();
+        MultiPolygon::new(polygons)
+    }
+}
+
 /// The swaths of one part, at the direction that works it with the fewest pieces.
-fn fill_part(part: &Polygon, centres: &MultiPolygon, settings: &FillSettings) -> Option<Swaths> {
+fn fill_part(part: &Polygon, centres: &Centres, settings: &FillSettings) -> Option<Swaths> {
     let w = settings.width;
     let Lanes { core, near, lanes } = lanes(part, centres, w)?;
     let reached = |s: &crate::swath::Swath| {
@@ -167,7 +213,7 @@ pub(crate) struct Lanes {
 
 /// The lanes of `part` among `centres` (where a strip's centre line may run), for an implement
 /// `w` wide; `None` where the part is nowhere half a width across or no lane reaches it.
-pub(crate) fn lanes(part: &Polygon, centres: &MultiPolygon, w: f64) -> Option<Lanes> {
+pub(crate) fn lanes(part: &Polygon, centres: &Centres, w: f64) -> Option<Lanes> {
     let part = MultiPolygon::new(vec![part.clone()]);
     let core = inset(&part, w / 4.0);
     if core.unsigned_area() <= 0.0 {
@@ -175,23 +221,8 @@ pub(crate) fn lanes(part: &Polygon, centres: &MultiPolygon, w: f64) -> Option<La
     }
     let near = outset(&core, w / 2.0 - REACH_SLACK_M);
     let box_of = near.bounding_rect()?;
-    // Only the holes near the part matter (a field of 2,000 ponds is one polygon with 2,000
-    // holes).
-    let nearby: Vec<Polygon> = centres
-        .0
-        .iter()
-        .filter(|p| p.bounding_rect().is_some_and(|b| b.intersects(&box_of)))
-        .map(|p| {
-            let holes = p
-                .interiors()
-                .iter()
-                .filter(|h| h.bounding_rect().is_some_and(|b| b.intersects(&box_of)))
-                .cloned()
-                .collect();
-            Polygon::new(p.exterior().clone(), holes)
-        })
-        .collect();
-    let lanes = MultiPolygon::new(nearby).intersection(&near);
+    // Only the holes near the part matter.
+    let lanes = centres.near(&box_of).intersection(&near);
     (lanes.unsigned_area() > 0.0).then_some(Lanes { core, near, lanes })
 }
 
