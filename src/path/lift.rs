@@ -14,7 +14,6 @@ use super::PathSegment;
 use crate::geometry::intervals::{union, Intervals};
 use crate::geometry::{IndexedSegment, PlanarHypot};
 use crate::route::{Route, RouteStep};
-use crate::sort::SharedSort;
 use crate::swath::Swaths;
 use geo::Coord;
 use rstar::AABB;
@@ -93,7 +92,7 @@ impl Area {
             }
             along += length;
         }
-        hits.shared_sort_by_float_key(|h| h.0);
+        hits.sort_unstable_by(|a, b| a.0.total_cmp(&b.0));
         (union(&[], &hits), along)
     }
 
@@ -216,7 +215,7 @@ fn over_small_obstacles(swaths: &Swaths, i: usize, reversed: bool) -> Intervals 
             }
         })
         .collect();
-    out.shared_sort_by_float_key(|h| h.0);
+    out.sort_unstable_by(|a, b| a.0.total_cmp(&b.0));
     union(&[], &out)
 }
 
