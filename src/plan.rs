@@ -528,6 +528,7 @@ fn lay_headlands(
         &HeadlandSettings {
             width,
             turn_radius: options.turn_radius,
+            exact: options.reverse,
             obstacle_passes: options.headland_pass_count(),
             edge_passes: &edge_passes,
         },

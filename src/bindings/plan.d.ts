@@ -184,7 +184,9 @@ export interface PlanOptions {
    * boundary: the route ends there.
    */
   exit?: Position | null;
-  /** Whether the machine may reverse in turns (three-point turns, Reeds-Shepp paths). Default false. */
+  /** Whether the machine may reverse in turns (three-point turns, Reeds-Shepp paths); its headland
+   * passes then follow the field's corners exactly, each corner worked into and left by backing
+   * round onto the next side. Default false. */
   reverse?: boolean;
   /** Largest change of curvature per metre driven (1/m²): turns get clothoid transitions. At most
    * 1000 and at least 1 / (1000 × turnRadius): steering from straight to the tightest turn takes at

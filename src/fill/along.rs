@@ -56,6 +56,7 @@ pub struct FillPass {
 ///     regions: &[],
 ///     min_length: 6.0,
 ///     reachable: &|_| true,
+///     slivers: &|_| false,
 /// };
 /// let passes = passes_along(&left, &centres, &settings);
 /// // One pass up the arm and back down it.
@@ -82,7 +83,8 @@ pub fn passes_along(
         .iter()
         .filter(|u| u.reachable_m2 >= MIN_PART_WIDTHS * w * w)
     {
-        let Some(Lanes { core, lanes, .. }) = lanes(&u.polygon, &centres, w) else {
+        let Some(Lanes { core, lanes, .. }) = lanes(&u.polygon, &centres, w, settings.slivers)
+        else {
             continue;
         };
         let over = outset(&core, w / 4.0);
@@ -261,6 +263,7 @@ mod tests {
             regions: &[],
             min_length: 6.0,
             reachable,
+            slivers: &|_| false,
         }
     }
 

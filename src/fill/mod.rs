@@ -7,7 +7,9 @@
 //! field's, whichever works it with fewer pieces. A line's centre keeps half a width from the
 //! boundary and the obstacles (the whole strip stays in the field) and runs as far as its strip
 //! reaches the middle of the part's wide stretches; slivers narrower than half a width are left
-//! (a full strip over them would mostly work again what is worked). A piece is laid only where
+//! (a full strip over them would mostly work again what is worked), but for those a quarter of a
+//! width across outside the inner field: the middle of an arm or a strip its passes work round,
+//! which no swath works. A piece is laid only where
 //! the route can get to one of its ends without crossing crop (near a headland pass or a
 //! swath's track): a part with no such piece is left, to be measured as standing.
 //!
@@ -42,6 +44,10 @@ pub struct FillSettings<'a> {
     /// ends is such a point, so that the route reaches it and leaves it (driving back along it
     /// from a dead end).
     pub reachable: &'a dyn Fn(Coord) -> bool,
+    /// Whether a sliver (a part nowhere half a width across, a quarter somewhere) is filled: the
+    /// middle of an arm or a strip that its passes work round, not a sliver among the swaths,
+    /// where a strip over it would mostly work again what they work.
+    pub slivers: &'a dyn Fn(&Polygon) -> bool,
 }
 
 impl std::fmt::Debug for FillSettings<'_> {
@@ -57,8 +63,14 @@ impl std::fmt::Debug for FillSettings<'_> {
 }
 
 /// The least area (in working widths squared) a strip must be able to reach of a part for it to
-/// be filled; and a part must be half a width across somewhere.
+/// be filled; and a part must be half a width across somewhere, or a quarter for a sliver
+/// [`FillSettings::slivers`] lets be filled.
 pub(crate) const MIN_PART_WIDTHS: f64 = 0.5;
+
+/// The least area (in working widths squared) of a sliver the plan fills (see
+/// [`FillSettings::slivers`]): a strip over a sliver mostly works again what is worked, worth
+/// driving to where the sliver is long.
+pub(crate) const MIN_SLIVER_WIDTHS: f64 = 4.0;
 
 /// The swaths that work the parts of `uncovered`, one set per part that gets any (each at its
 /// own direction). `centres` is where a strip's centre line may run: the field less its
@@ -85,6 +97,7 @@ pub(crate) const MIN_PART_WIDTHS: f64 = 0.5;
 ///     regions: &[],
 ///     min_length: 6.0,
 ///     reachable: &|_| true,
+///     slivers: &|_| false,
 /// };
 /// let pieces = fill(&left, &centres, &settings);
 /// assert_eq!(pieces.len(), 1);
@@ -157,15 +170,15 @@ impl<'a> Centres<'a> {
 /// The swaths of one part, at the direction that works it with the fewest pieces.
 fn fill_part(part: &Polygon, centres: &Centres, settings: &FillSettings) -> Option<Swaths> {
     let w = settings.width;
-    let Lanes { core, near, lanes } = lanes(part, centres, w)?;
+    let part = lanes(part, centres, w, settings.slivers)?;
     let reached = |s: &crate::swath::Swath| {
         (settings.reachable)(s.centre.start) || (settings.reachable)(s.centre.end)
     };
     let mut best: Option<Swaths> = None;
     // Where no direction reaches all its pieces, the one whose reachable pieces are longest.
     let mut partly: Option<Swaths> = None;
-    for bearing in directions(&core, &near, settings) {
-        let Some(swaths) = pieces_at(&core, &lanes, bearing, w, settings.min_length) else {
+    for bearing in directions(&part.core, &part.near, settings) {
+        let Some(swaths) = pieces_at(&part, bearing, w, settings.min_length) else {
             continue;
         };
         if !swaths.swaths.iter().all(reached) {
@@ -203,8 +216,11 @@ fn fill_part(part: &Polygon, centres: &Centres, settings: &FillSettings) -> Opti
 
 /// Where pieces working a part may run.
 pub(crate) struct Lanes {
-    /// The part where it is at least half a width across (the part inset by a quarter width).
+    /// The part where it is at least half a width across (inset by a quarter width), or a
+    /// sliver's where it is a quarter width across (inset by an eighth).
     pub core: MultiPolygon,
+    /// How far the core lies inside the part, metres.
+    pub core_inset: f64,
     /// Within how far a centre line's strip reaches the core (half a width round it).
     pub near: MultiPolygon,
     /// Where a centre line may run to work the core: in `near`, its strip in the field.
@@ -212,10 +228,22 @@ pub(crate) struct Lanes {
 }
 
 /// The lanes of `part` among `centres` (where a strip's centre line may run), for an implement
-/// `w` wide; `None` where the part is nowhere half a width across or no lane reaches it.
-pub(crate) fn lanes(part: &Polygon, centres: &Centres, w: f64) -> Option<Lanes> {
+/// `w` wide; `None` where the part is nowhere half a width across (a quarter where `sliver`
+/// says so) or no lane reaches it.
+pub(crate) fn lanes(
+    part: &Polygon,
+    centres: &Centres,
+    w: f64,
+    sliver: &dyn Fn(&Polygon) -> bool,
+) -> Option<Lanes> {
+    let whole = part;
     let part = MultiPolygon::new(vec![part.clone()]);
-    let core = inset(&part, w / 4.0);
+    let mut core_inset = w / 4.0;
+    let mut core = inset(&part, core_inset);
+    if core.unsigned_area() <= 0.0 && sliver(whole) {
+        core_inset = w / 8.0;
+        core = inset(&part, core_inset);
+    }
     if core.unsigned_area() <= 0.0 {
         return None;
     }
@@ -223,7 +251,12 @@ pub(crate) fn lanes(part: &Polygon, centres: &Centres, w: f64) -> Option<Lanes> 
     let box_of = near.bounding_rect()?;
     // Only the holes near the part matter.
     let lanes = centres.near(&box_of).intersection(&near);
-    (lanes.unsigned_area() > 0.0).then_some(Lanes { core, near, lanes })
+    (lanes.unsigned_area() > 0.0).then_some(Lanes {
+        core,
+        core_inset,
+        near,
+        lanes,
+    })
 }
 
 /// The area the implement works along `swaths`: their strips, `width` wide, as one region.
@@ -296,19 +329,19 @@ fn narrowest(part: &MultiPolygon) -> Option<f64> {
     best.map(|(_, b)| b)
 }
 
-/// The pieces of lines at `bearing` that work the part whose `core` (the part inset by a
-/// quarter width) is given: as few lines a width apart as span the part's wide extent across,
-/// spread evenly over it, each moved into the lanes' extent and cut to the lanes.
-fn pieces_at(
-    core: &MultiPolygon,
-    lanes: &MultiPolygon,
-    bearing: f64,
-    w: f64,
-    min_length: f64,
-) -> Option<Swaths> {
+/// The pieces of lines at `bearing` that work the part whose lanes are given: as few lines a
+/// width apart as span the part's wide extent across (its core's, grown back by the core's
+/// inset), spread evenly over it, each moved into the lanes' extent and cut to the lanes.
+fn pieces_at(part: &Lanes, bearing: f64, w: f64, min_length: f64) -> Option<Swaths> {
+    let Lanes {
+        core,
+        core_inset,
+        lanes,
+        ..
+    } = part;
     let frame = SweepFrame::new(bearing);
     let (lo, hi) = frame.across_extent(core)?;
-    let (lo, hi) = (lo - w / 4.0, hi + w / 4.0);
+    let (lo, hi) = (lo - core_inset, hi + core_inset);
     let (lane_lo, lane_hi) = frame.across_extent(lanes)?;
     let count = (((hi - lo) / w) - 1e-6).ceil().max(1.0) as usize;
     let mut offsets: Vec<f64> = if count == 1 {
@@ -353,6 +386,7 @@ mod tests {
             regions: &[],
             min_length: 3.0,
             reachable: &anywhere,
+            slivers: &|_| false,
         }
     }
 
@@ -387,6 +421,7 @@ mod tests {
         let nowhere = |_: Coord| false;
         let none = FillSettings {
             reachable: &nowhere,
+            slivers: &|_| false,
             ..settings(0.0)
         };
         assert!(fill(&left, &centres, &none).is_empty());
@@ -395,6 +430,7 @@ mod tests {
         let north = |p: Coord| p.y > 90.0;
         let from_north = FillSettings {
             reachable: &north,
+            slivers: &|_| false,
             ..settings(0.0)
         };
         let pieces = fill(&left, &centres, &from_north);
@@ -416,6 +452,7 @@ mod tests {
         let corner = |p: Coord| p.x > 48.0 && p.y > 90.0;
         let from_corner = FillSettings {
             reachable: &corner,
+            slivers: &|_| false,
             ..settings(0.0)
         };
         let pieces = fill(&before.uncovered, &centres, &from_corner);

@@ -129,6 +129,9 @@ pub struct HeadlandSettings<'a> {
     pub width: f64,
     /// Turning radius, metres: passes are rounded to it at convex corners.
     pub turn_radius: f64,
+    /// Whether the passes are the exact offsets, not rounded: for a machine that reverses, which
+    /// works into their corners (see [`crate::path::follow`]).
+    pub exact: bool,
     /// Passes around each obstacle that has a headland.
     pub obstacle_passes: u32,
     /// Passes along each edge of the boundary's outer ring (edge `i` from point `i`).
@@ -162,6 +165,7 @@ pub fn constant_width(field: &Field, width: f64, passes: u32) -> Result<Headland
         &HeadlandSettings {
             width,
             turn_radius: 0.0,
+            exact: true,
             obstacle_passes: passes,
             edge_passes: &edges,
         },
@@ -179,7 +183,13 @@ pub fn constant_width(field: &Field, width: f64, passes: u32) -> Result<Headland
 ///
 /// // A 200 x 100 m field with headland along its short (east and west) edges only.
 /// let field = polygon![(x: 0., y: 0.), (x: 200., y: 0.), (x: 200., y: 100.), (x: 0., y: 100.)];
-/// let settings = HeadlandSettings { width: 6.0, turn_radius: 8.0, obstacle_passes: 2, edge_passes: &[0, 2, 0, 2] };
+/// let settings = HeadlandSettings {
+///     width: 6.0,
+///     turn_radius: 8.0,
+///     exact: false,
+///     obstacle_passes: 2,
+///     edge_passes: &[0, 2, 0, 2],
+/// };
 /// let h = build(&field, &[], &settings)?;
 /// assert!((h.inner.unsigned_area() - 176.0 * 100.0).abs() < 1e-6);
 /// assert_eq!(h.passes.len(), 4); // two open passes at each end
@@ -229,7 +239,13 @@ pub fn build(
         // The opening of the pass's room by the turning disc; where the disc fits nowhere, the
         // room itself: the pass is laid exact and the path drives its corners with manoeuvres
         // (lifted where one would work outside), rather than dropped.
-        let drivable = if uniform {
+        let drivable = if settings.exact {
+            if uniform {
+                inset(&region, d)
+            } else {
+                keep_clear(&region, &constraints)
+            }
+        } else if uniform {
             // The opening of the inset by d is the outset of the inset by d + r.
             let opened = outset(
                 &inset(&region, d + settings.turn_radius),
@@ -622,6 +638,7 @@ mod tests {
         let settings = HeadlandSettings {
             width: 24.0,
             turn_radius: 9.0,
+            exact: false,
             obstacle_passes: 1,
             edge_passes: &[1, 1, 1, 1],
         };
@@ -641,6 +658,26 @@ mod tests {
             "{ys:?}"
         );
         assert_eq!(ring.0.len(), 5, "four sharp corners");
+    }
+
+    #[test]
+    fn exact_passes_keep_their_corners_where_opened_ones_round_them() {
+        let settings = |exact| HeadlandSettings {
+            width: 6.0,
+            turn_radius: 8.0,
+            exact,
+            obstacle_passes: 2,
+            edge_passes: &[2, 2, 2, 2],
+        };
+        let field = rectangle(100.0, 60.0);
+        let exact = build(&field, &[], &settings(true)).unwrap();
+        let opened = build(&field, &[], &settings(false)).unwrap();
+        for (e, o) in exact.passes.iter().zip(&opened.passes) {
+            assert_eq!(e.line.0.len(), 5, "four sharp corners: {:?}", e.line);
+            assert!(o.line.0.len() > 5, "rounded corners: {:?}", o.line);
+            assert!(e.length() > o.length());
+        }
+        assert!((exact.inner.unsigned_area() - opened.inner.unsigned_area()).abs() < 1e-6);
     }
 
     #[test]

@@ -73,14 +73,17 @@ pub fn follow(points: &[Coord], v: &Vehicle) -> Vec<Segment> {
 /// use geo::{coord, polygon};
 ///
 /// let v = Vehicle { turn_radius: 8.0, reverse: true, ..Vehicle::default() };
-/// // Up a strip 12 m wide and back: at its dead end the machine turns round inside the strip.
+/// // Up a strip 12 m wide and back: at its dead end the machine, which may reverse, works into
+/// // both corners, backing round onto the next side at each, inside the strip.
 /// let strip = polygon![(x: -10., y: -6.), (x: 100., y: -6.), (x: 100., y: 6.), (x: -10., y: 6.)];
 /// let line = [coord! { x: 0., y: -3. }, coord! { x: 90., y: -3. }, coord! { x: 90., y: 3. },
 ///     coord! { x: 0., y: 3. }];
 /// let (path, manoeuvres) = follow_in(&line, &v, Some(&Area::new(&strip, &[])));
-/// assert_eq!(manoeuvres.len(), 1);
-/// assert!(manoeuvres[0].inside);
-/// assert!(path[manoeuvres[0].pieces.clone()].iter().any(|s| s.gear == furrow::path::curve::Gear::Reverse));
+/// assert_eq!(manoeuvres.len(), 2);
+/// for m in &manoeuvres {
+///     assert!(m.inside);
+///     assert!(path[m.pieces.clone()].iter().any(|s| s.gear == furrow::path::curve::Gear::Reverse));
+/// }
 /// ```
 pub fn follow_in(
     points: &[Coord],
@@ -143,6 +146,29 @@ pub fn follow_in(
                 }
                 break;
             };
+            // A corner drawn as one vertex, or as a few within half a width of each other
+            // (a chamfer the offset leaves), worked into as one.
+            let corner = if skipped <= v.width / 2.0 && s >= a_from {
+                into_corner(&edges[a], s, &edges[k], t, deflection, v, area)
+            } else {
+                None
+            };
+            if let Some((run, turn)) = corner {
+                push_line(&mut out, &mut position, s + run - a_from);
+                manoeuvres.push(Manoeuvre {
+                    pieces: out.len()..out.len() + turn.segments.len(),
+                    form: turn.form,
+                    inside: true,
+                });
+                out.extend(turn.segments);
+                let at = edges[k].from + edges[k].dir * (t - run);
+                position = Pose::new(at.x, at.y, edges[k].heading);
+                a = k;
+                a_from = t - run;
+                j = k + 1;
+                placed = true;
+                break;
+            }
             let tangent = v.tangent_length(deflection);
             if !tangent.is_finite() {
                 break;
@@ -419,6 +445,47 @@ fn is_bend(turn: &Turn, deflection: f64) -> bool {
         turned += (s.curvature.abs() + s.sharpness.abs() * s.length / 2.0) * s.length;
     }
     turn.inside && turned <= deflection + std::f64::consts::FRAC_PI_3 + 1e-9
+}
+
+/// Least crop (in working widths squared) the rounding of a corner must leave for a machine that
+/// reverses to work into the corner instead.
+const CORNER_CROP_WIDTHS2: f64 = 0.25;
+
+/// How a machine that reverses works into a sharp corner of a pass (from the edge `from`, `s`
+/// along it, onto the edge `onto`, `t` along it) rather than rounding it, where the rounding
+/// would leave at least [`CORNER_CROP_WIDTHS2`] of crop: it works on past the corner as far as
+/// the implement's bar stays in the field (half a width past a square corner), turns with the
+/// implement lifted, and sets off on the next edge as far before the corner. The run past the
+/// corner and the turn, which stays in `area`; `None` where it does not, or where no area is
+/// given (a line that is not worked).
+fn into_corner(
+    from: &Edge,
+    s: f64,
+    onto: &Edge,
+    t: f64,
+    deflection: f64,
+    v: &Vehicle,
+    area: Option<&Area>,
+) -> Option<(f64, Turn)> {
+    let area = area.filter(|_| v.reverse && !v.pivots())?;
+    let half = v.width / 2.0;
+    let d = deflection.abs() / 2.0;
+    let rim = v.turn_radius + half;
+    if rim * rim * (d.tan() - d) < CORNER_CROP_WIDTHS2 * v.width * v.width {
+        return None;
+    }
+    // The bar past the corner reaches the next side's line (for the outermost pass, the field's
+    // boundary) at tan(d) half widths, or its tip at an acute corner at cot(d). (Where another
+    // side is nearer, the path's lifts take the implement out of work, see [`super::lift`].)
+    let run = (half * d.tan().min(1.0 / d.tan()) - 0.01).max(0.0);
+    let past = from.from + from.dir * (s + run);
+    let before = onto.from + onto.dir * (t - run);
+    let turn = v.turn(
+        Pose::new(past.x, past.y, from.heading),
+        Pose::new(before.x, before.y, onto.heading),
+        area,
+    );
+    turn.inside.then_some((run, turn))
 }
 
 /// Whether the implement working along `segments` stays in `area` (to a centimetre; true
@@ -698,5 +765,49 @@ mod tests {
             assert!((k0 - w[1].curvature).abs() < 1e-9, "curvature jumps");
         }
         assert!(path.iter().all(|s| s.sharpness.abs() <= 0.1 + 1e-12));
+    }
+
+    #[test]
+    fn a_machine_that_reverses_works_into_square_corners_and_one_that_does_not_rounds_them() {
+        // A pass 3 m inside a 100 x 60 m field, started along its south side.
+        let field = polygon![(x: 0., y: 0.), (x: 100., y: 0.), (x: 100., y: 60.), (x: 0., y: 60.)];
+        let area = Area::new(&field, &[]);
+        let ring = [
+            coord! { x: 40., y: 3. },
+            coord! { x: 97., y: 3. },
+            coord! { x: 97., y: 57. },
+            coord! { x: 3., y: 57. },
+            coord! { x: 3., y: 3. },
+            coord! { x: 40., y: 3. },
+        ];
+        let drill = Vehicle {
+            width: 6.0,
+            turn_radius: 8.0,
+            ..Vehicle::default()
+        };
+        let (_, rounded) = follow_round_in(&ring, &drill, Some(&area));
+        assert!(rounded.is_empty(), "{rounded:?}");
+        let reversing = Vehicle {
+            reverse: true,
+            ..drill
+        };
+        let (path, corners) = follow_round_in(&ring, &reversing, Some(&area));
+        assert_eq!(corners.len(), 4, "{corners:?}");
+        for m in &corners {
+            assert!(m.inside);
+            let turn = &path[m.pieces.clone()];
+            assert!(turn.iter().any(|s| s.gear == Gear::Reverse), "{turn:?}");
+            // Worked on until the bar is a centimetre from the next side: half a width past
+            // the corner of the pass.
+            let at = path[m.pieces.start - 1].end();
+            let to_side = (at.x.min(100.0 - at.x)).min(at.y.min(60.0 - at.y));
+            assert!((to_side - 0.01).abs() < 1e-6, "{at:?}");
+        }
+        // All the way round: back on the south side, level with the start or past it.
+        let end = path.last().map(Segment::end).expect("a path");
+        assert!(
+            (end.y - 3.0).abs() < 1e-6 && end.x >= 40.0 - 1e-6,
+            "{end:?}"
+        );
     }
 }

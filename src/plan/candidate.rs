@@ -11,7 +11,7 @@ use crate::direction::{search_area, AreaSearch, DirectionMode};
 use crate::error::{ErrorCode, PlanError, Warning, WarningCode};
 use crate::field::{Field, ProhibitedRegion};
 use crate::fill::along::passes_along;
-use crate::fill::{fill, FillSettings};
+use crate::fill::{fill, FillSettings, MIN_SLIVER_WIDTHS};
 use crate::geometry::BooleanOps;
 use crate::geometry::{forbids_every_direction, SweepFrame};
 use crate::headland::offset::inset;
@@ -146,6 +146,14 @@ pub(super) fn fill_leftovers(
         regions: &prep.field.prohibited,
         min_length: options.min_swath_length_m(),
         reachable: &|p| graph.reaches(p),
+        // Long slivers a width or more from the inner field: the middle of an arm or a strip its
+        // passes work round.
+        slivers: &|part| {
+            geo::Area::unsigned_area(part) >= MIN_SLIVER_WIDTHS * width * width
+                && geo::Centroid::centroid(part).is_some_and(|c| {
+                    geo::Distance::distance(&geo::Euclidean, &c, &worked.headlands.inner) >= width
+                })
+        },
     };
     let centres = strip_centres(prep.field, width);
     let pieces = if before.uncovered.is_empty() {
