@@ -9,6 +9,7 @@ export type {
   FieldInput,
   HeadlandMode,
   HeadlandOrder,
+  HeadlandCorners,
   EdgePasses,
   DirectionMode,
   SearchMethod,

@@ -433,6 +433,15 @@ test("viewer: obstacle classes, lifted swaths, headland only where needed", { ti
     assert.equal(await page.inputValue("#headlandMode"), "needed");
     assert.equal(await page.inputValue("#headlandOrder"), "first");
     await page.screenshot({ path: join(SHOTS, "viewer-classes-needed.png") });
+    // Corners worked into: the passes follow the field exactly, longer than rounded ones.
+    assert.equal(await page.inputValue("#headlandCorners"), "auto", "corners auto by default");
+    const passes = () => page.evaluate(() => window.furrow.plan.summary.headland_distance_m);
+    const rounded = await passes();
+    await page.selectOption("#headlandCorners", "manoeuvre");
+    await ready(page);
+    assert.equal(await page.evaluate(() => window.furrow.options.headlandCorners), "manoeuvre");
+    const exact = await passes();
+    assert.ok(exact > rounded, `headland passes ${exact} m with the corners worked into, ${rounded} m rounded`);
   });
 });
 

@@ -25,10 +25,10 @@ pub mod split_merge;
 use crate::field::ring::clean_ring;
 use crate::swath::{Swath, Swaths};
 use geo::{LineString, MultiPolygon, Polygon};
-use serde::{Deserialize, Serialize};
+use serde::Serialize;
 
 /// How the inner field is cut into blocks (the `decomposition` option).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum Decomposition {
     /// One direction; swaths clustered into blocks where obstacles and bays break the lines.
@@ -41,6 +41,8 @@ pub enum Decomposition {
     #[default]
     Auto,
 }
+
+crate::named::named!(Decomposition { "none" => None, "boustrophedon" => Boustrophedon, "split-merge" => SplitMerge, "auto" => Auto });
 
 impl Decomposition {
     /// The name, as the options spell it.

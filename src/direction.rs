@@ -23,11 +23,11 @@ use crate::prohibited::{forbidding, split};
 use crate::sort::SharedSort;
 use crate::swath::{generate_with, LinePlacement, SwathSettings};
 use geo::{BoundingRect, Coord, LineString, MultiPolygon, Polygon};
-use serde::{Deserialize, Serialize};
+use serde::Serialize;
 use std::f64::consts::PI;
 
 /// How the driving direction of a plan is chosen (the `direction` option).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum DirectionMode {
     /// The direction of lowest cost by the objective.
@@ -40,8 +40,10 @@ pub enum DirectionMode {
     Reference,
 }
 
+crate::named::named!(DirectionMode { "search" => Search, "longest-edge" => LongestEdge, "fixed" => Fixed, "reference" => Reference });
+
 /// How the direction search steps through directions.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum SearchMethod {
     /// Every direction at a fixed step (Fields2Cover's brute force).
@@ -51,6 +53,8 @@ pub enum SearchMethod {
     #[default]
     CoarseToFine,
 }
+
+crate::named::named!(SearchMethod { "brute-force" => BruteForce, "coarse-to-fine" => CoarseToFine });
 
 /// The direction a search found.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -48,6 +48,7 @@ pub mod fill;
 pub mod geometry;
 pub mod headland;
 pub mod metrics;
+mod named;
 pub mod numbers;
 pub mod objective;
 pub mod obstacles;

@@ -20,7 +20,7 @@ use crate::geometry::{Extremes, PlanarHypot};
 use crate::sort::{sort_floats, SharedSort};
 use crate::swath::{Swath, Swaths};
 use geo::{Area, Coord, MultiPolygon};
-use serde::{Deserialize, Serialize};
+use serde::Serialize;
 use std::f64::consts::PI;
 use std::ops::AddAssign;
 
@@ -307,7 +307,7 @@ impl Objective for OksanenWeighted {
 }
 
 /// The objectives by name, for the options.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum ObjectiveKind {
     /// [`SwathCount`].
@@ -326,6 +326,8 @@ pub enum ObjectiveKind {
     /// [`OksanenWeighted`] with the paper's weights.
     Oksanen,
 }
+
+crate::named::named!(ObjectiveKind { "swath-count" => SwathCount, "swath-length" => SwathLength, "coverage" => Coverage, "overlap" => Overlap, "turn-count" => TurnCount, "time" => Time, "oksanen" => Oksanen });
 
 impl ObjectiveKind {
     /// The objective.

@@ -8,7 +8,7 @@ use crate::field::place::{place_problem, range_problem, MAX_PLACE_DISTANCE_M};
 use crate::field::Coordinates;
 use crate::geometry::{forbids_every_direction, BearingRange};
 use crate::headland::passes::{passes_for_turns, HeadlandPasses};
-use crate::headland::{EdgePasses, HeadlandMode, HeadlandOrder};
+use crate::headland::{EdgePasses, HeadlandCorners, HeadlandMode, HeadlandOrder};
 use crate::numbers::{Position, Shortest};
 use crate::objective::{Machine, ObjectiveKind};
 use crate::route::pattern::SwathPattern;
@@ -52,6 +52,9 @@ pub struct PlanOptions {
     /// Whether the headland passes are worked before the swaths (`first`, as in harvesting) or
     /// after them (`last`, as in seeding).
     pub headland_order: HeadlandOrder,
+    /// How the sharp corners of the headland passes are driven: worked into by a machine that
+    /// reverses where it can (`auto`), rounded (`round`), or always worked into (`manoeuvre`).
+    pub headland_corners: HeadlandCorners,
     /// Obstacles narrower than this across the driving direction (metres) do not split the
     /// field: swaths run past them with the implement lifted (class A). `None` means one working
     /// width.
@@ -142,6 +145,7 @@ impl Default for PlanOptions {
             headland_tolerance_deg: 5.0,
             edge_passes: Vec::new(),
             headland_order: HeadlandOrder::Last,
+            headland_corners: HeadlandCorners::Auto,
             obstacle_threshold: None,
             turn_radius: 8.0,
             direction: None,
@@ -231,6 +235,11 @@ pub const OPTION_DOCS: &[(&str, &str, &str)] = &[
         "headlandOrder",
         "first|last",
         "work the headland passes before the swaths (harvest) or after them (seeding) (default last)",
+    ),
+    (
+        "headlandCorners",
+        "auto|round|manoeuvre",
+        "the sharp corners of the headland passes: worked into by backing round where the machine reverses (auto), rounded at the turning radius (round), or always worked into, by a manoeuvre outside the field where none fits inside (manoeuvre) (default auto)",
     ),
     (
         "obstacleThreshold",
@@ -361,7 +370,7 @@ pub const OPTION_DOCS: &[(&str, &str, &str)] = &[
 
 /// [`PlanOptions::default`] as JSON text, as `serde_json` writes it (a test checks): the npm
 /// package's `defaultOptions` parses it rather than carrying the options' writer.
-pub const DEFAULT_OPTIONS_JSON: &str = r#"{"width":6.0,"headlandPasses":2,"headlandMode":"constant","headlandTolerance":5.0,"edgePasses":[],"headlandOrder":"last","obstacleThreshold":null,"turnRadius":8.0,"direction":null,"search":"coarse-to-fine","searchStep":1.0,"objective":"time","bearing":null,"referenceLine":null,"referenceEdge":null,"referenceOffset":null,"workingSpeed":8.0,"turningSpeed":5.0,"forbiddenBearings":[],"minSwathLength":null,"coordinates":"wgs84","decomposition":"auto","pattern":"auto","snakeSkip":1,"spiralSize":6,"customOrder":[],"entrance":null,"exit":null,"reverse":false,"curvatureRate":null,"sampleSpacing":0.5}"#;
+pub const DEFAULT_OPTIONS_JSON: &str = r#"{"width":6.0,"headlandPasses":2,"headlandMode":"constant","headlandTolerance":5.0,"edgePasses":[],"headlandOrder":"last","headlandCorners":"auto","obstacleThreshold":null,"turnRadius":8.0,"direction":null,"search":"coarse-to-fine","searchStep":1.0,"objective":"time","bearing":null,"referenceLine":null,"referenceEdge":null,"referenceOffset":null,"workingSpeed":8.0,"turningSpeed":5.0,"forbiddenBearings":[],"minSwathLength":null,"coordinates":"wgs84","decomposition":"auto","pattern":"auto","snakeSkip":1,"spiralSize":6,"customOrder":[],"entrance":null,"exit":null,"reverse":false,"curvatureRate":null,"sampleSpacing":0.5}"#;
 
 /// Most swaths the snake pattern may skip, and most in a spiral or custom group.
 pub const MAX_PATTERN_SWATHS: u32 = 1000;
@@ -771,6 +780,7 @@ impl PlanOptions {
             width: self.width,
             turn_radius: self.turn_radius,
             reverse: self.reverse,
+            corners: self.headland_corners,
             curvature_rate: self.curvature_rate,
             working_speed: self.working_speed_kmh / 3.6,
             turning_speed: self.turning_speed_kmh / 3.6,

@@ -528,7 +528,7 @@ fn lay_headlands(
         &HeadlandSettings {
             width,
             turn_radius: options.turn_radius,
-            exact: options.reverse,
+            exact: options.vehicle().exact_passes(),
             obstacle_passes: options.headland_pass_count(),
             edge_passes: &edge_passes,
         },

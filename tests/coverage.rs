@@ -371,32 +371,56 @@ fn a_pass_the_turning_disc_does_not_fit_works_the_strip_round() {
 /// corner of its exact passes (driving on until the bar meets the next side, then backing
 /// round onto it) rather than rounding them at its turning radius: 97.98 % of the field was
 /// worked when it rounded them (its fill patching what the rounding left), 98.9 % now, and
-/// nothing outside.
+/// nothing outside. Asked to, it rounds them; asked to work into them, a machine that does not
+/// reverse does so too, with loops out of the field, warned of.
 #[test]
 fn a_machine_that_reverses_works_into_the_corners_of_its_passes() {
+    use furrow::headland::HeadlandCorners::{Auto, Manoeuvre, Round};
     let text = r#"{"type":"Polygon","coordinates":[[[0,0],[200,0],[140,90],[30,110],[0,0]]]}"#;
-    let options = furrow::PlanOptions {
-        width: 6.0,
-        headland_passes: 2.into(),
-        turn_radius: 8.0,
-        reverse: true,
-        coordinates: furrow::field::Coordinates::Metric,
-        ..furrow::PlanOptions::default()
-    };
-    let plan = plan_geojson(text, &options).unwrap_or_else(|e| panic!("{e}"));
-    let counted = independent_coverage(&plan, 0.25);
-    let c = &plan.summary.coverage;
-    assert!(
-        counted > 0.985,
-        "{counted:.4} of the field worked, {:.4} reachable",
-        c.reachable_ratio
-    );
-    assert!(
-        (c.coverage_ratio - counted).abs() <= 0.005,
-        "{c:?} against {counted:.4}"
-    );
-    let outside = worked_outside(&plan, 0.25);
-    assert!(outside <= 1.0, "{outside:.1} m² worked outside");
+    for (reverse, corners, worked_into) in [
+        (true, Auto, true),
+        (true, Round, false),
+        (false, Auto, false),
+        (false, Manoeuvre, true),
+    ] {
+        let options = furrow::PlanOptions {
+            width: 6.0,
+            headland_passes: 2.into(),
+            turn_radius: 8.0,
+            reverse,
+            headland_corners: corners,
+            coordinates: furrow::field::Coordinates::Metric,
+            ..furrow::PlanOptions::default()
+        };
+        let plan = plan_geojson(text, &options).unwrap_or_else(|e| panic!("{e}"));
+        let counted = independent_coverage(&plan, 0.25);
+        let c = &plan.summary.coverage;
+        assert_eq!(
+            counted > 0.985,
+            worked_into,
+            "reverse {reverse}, {corners:?}: {counted:.4} of the field worked, {:.4} reachable",
+            c.reachable_ratio
+        );
+        assert!(
+            (c.coverage_ratio - counted).abs() <= 0.005,
+            "{c:?} against {counted:.4}"
+        );
+        let outside = worked_outside(&plan, 0.25);
+        assert!(outside <= 1.0, "{outside:.1} m² worked outside");
+        let loops_out = !reverse && worked_into;
+        assert_eq!(
+            plan.summary.turns_outside_field > 1,
+            loops_out,
+            "reverse {reverse}, {corners:?}: {} turns outside",
+            plan.summary.turns_outside_field
+        );
+        if loops_out {
+            assert!(plan
+                .warnings
+                .iter()
+                .any(|w| w.code == furrow::error::WarningCode::TurnLeavesField));
+        }
+    }
 }
 
 /// A strip 14 m wide worked round by one exact pass of a 6 m drill that reverses: the pass leaves

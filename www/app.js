@@ -28,6 +28,7 @@ export const OPTION_INPUTS = [
   "bearing",
   "headlandMode",
   "headlandOrder",
+  "headlandCorners",
   "obstacleThreshold",
   "objective",
   "search",

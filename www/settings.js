@@ -5,7 +5,7 @@ import { $, history, OPTION_INPUTS, state, ui } from "./app.js";
 import { parseRanges, plannerInput, referenceLineOf, toCollection } from "./editor.js";
 import { replan } from "./planning.js";
 
-const CHOICES = new Set(["headlandMode", "headlandOrder", "objective", "search", "decomposition", "pattern", "reverse", "direction"]); // <select>s: their value is the option
+const CHOICES = new Set(["headlandMode", "headlandOrder", "headlandCorners", "objective", "search", "decomposition", "pattern", "reverse", "direction"]); // <select>s: their value is the option
 const BOOLEANS = new Set(["reverse"]); // <select>s of "true" and "false"
 const OPTIONAL = new Set(["bearing", "obstacleThreshold", "referenceEdge", "curvatureRate"]); // empty: null, the planner's default
 const TEXTS = new Set(["forbiddenBearings"]); // read by their own parser

@@ -24,6 +24,14 @@ export type HeadlandMode = "constant" | "needed";
 export type HeadlandOrder = "first" | "last";
 
 /**
+ * How the sharp corners of the headland passes are driven: worked into by backing round onto the
+ * next side where the machine reverses (`"auto"`; rounded otherwise), rounded at the turning
+ * radius (`"round"`), or always worked into, by a manoeuvre outside the field where none fits
+ * inside, warned of (`"manoeuvre"`).
+ */
+export type HeadlandCorners = "auto" | "round" | "manoeuvre";
+
+/**
  * The number of headland passes along one edge of the boundary as drawn: edge `i` runs from
  * point `i` to point `i + 1` of the boundary's outer ring in the input.
  */
@@ -103,6 +111,11 @@ export interface PlanOptions {
    * (`"last"`, seeding). Default `"last"`.
    */
   headlandOrder?: HeadlandOrder;
+  /**
+   * How the sharp corners of the headland passes are driven (see {@link HeadlandCorners}).
+   * Default `"auto"`.
+   */
+  headlandCorners?: HeadlandCorners;
   /**
    * Obstacles narrower than this across the driving direction (metres) do not split the field:
    * swaths run past them with the implement lifted (class A). `null` or absent: one working
@@ -184,9 +197,9 @@ export interface PlanOptions {
    * boundary: the route ends there.
    */
   exit?: Position | null;
-  /** Whether the machine may reverse in turns (three-point turns, Reeds-Shepp paths); its headland
-   * passes then follow the field's corners exactly, each corner worked into and left by backing
-   * round onto the next side. Default false. */
+  /** Whether the machine may reverse in turns (three-point turns, Reeds-Shepp paths); with
+   * `headlandCorners` `"auto"` it then works into the corners of its headland passes. Default
+   * false. */
   reverse?: boolean;
   /** Largest change of curvature per metre driven (1/m²): turns get clothoid transitions. At most
    * 1000 and at least 1 / (1000 × turnRadius): steering from straight to the tightest turn takes at

@@ -18,10 +18,10 @@ pub use projection::{Frame, TransverseMercator};
 
 use crate::error::{PlanError, Warning};
 use geo::{Area, Coord, Polygon};
-use serde::{Deserialize, Serialize};
+use serde::Serialize;
 
 /// The coordinates a field comes in.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Coordinates {
     /// WGS84 longitude and latitude in degrees, as GeoJSON (RFC 7946) has them.
@@ -30,6 +30,8 @@ pub enum Coordinates {
     /// Metres in a local frame (x east, y north), for apps that project the field themselves.
     Metric,
 }
+
+crate::named::named!(Coordinates { "wgs84" => Wgs84, "metric" => Metric });
 
 /// A field ready for planning, in local metres (x east, y north).
 #[derive(Debug, Clone)]

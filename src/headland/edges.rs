@@ -12,7 +12,7 @@ use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
 
 /// Where headland passes run.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "lowercase")]
 pub enum HeadlandMode {
     /// All around the field (Fields2Cover's constant-width headland).
@@ -22,6 +22,8 @@ pub enum HeadlandMode {
     /// direction (Oksanen & Visala 2.7).
     Needed,
 }
+
+crate::named::named!(HeadlandMode { "constant" => Constant, "needed" => Needed });
 
 /// The number of headland passes along one edge of the boundary as drawn: edge `i` runs from
 /// point `i` to point `i + 1` of the boundary's outer ring in the input.

@@ -35,10 +35,10 @@ use crate::geometry::PlanarHypot;
 use crate::numbers::Shortest;
 use geo::{Area, Coord, Euclidean, Length, LineString, MultiPolygon, Polygon};
 use offset::{drop_slivers, inset, line_band, open, outset, outset_fine};
-use serde::{Deserialize, Serialize};
+use serde::Serialize;
 
 /// When the headland passes are worked.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "lowercase")]
 pub enum HeadlandOrder {
     /// Before the swaths, from the outermost pass in: the machine opens up the field edge first,
@@ -49,6 +49,26 @@ pub enum HeadlandOrder {
     #[default]
     Last,
 }
+
+crate::named::named!(HeadlandOrder { "first" => First, "last" => Last });
+
+/// How the sharp corners of the headland passes are driven.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum HeadlandCorners {
+    /// Worked into where a manoeuvre inside the field does it, by a machine that reverses (its
+    /// passes exact); rounded at the turning radius otherwise, their crop left standing.
+    #[default]
+    Auto,
+    /// Every pass rounded at the turning radius.
+    Round,
+    /// Every pass exact, every sharp corner worked into: by the cheapest manoeuvre inside the
+    /// field, or, where none is (most corners of a machine that does not reverse), one that
+    /// leaves it, warned of.
+    Manoeuvre,
+}
+
+crate::named::named!(HeadlandCorners { "auto" => Auto, "round" => Round, "manoeuvre" => Manoeuvre });
 
 /// What a headland pass runs around.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -36,6 +36,7 @@
 use super::curve::{wrap, Gear, Pose, Segment};
 use super::turn::{Area, Turn, TurnForm, Vehicle};
 use crate::geometry::PlanarHypot;
+use crate::headland::HeadlandCorners;
 use geo::Coord;
 use std::ops::Range;
 
@@ -147,18 +148,21 @@ pub fn follow_in(
                 break;
             };
             // A corner drawn as one vertex, or as a few within half a width of each other
-            // (a chamfer the offset leaves), worked into as one.
-            let corner = if skipped <= v.width / 2.0 && s >= a_from {
-                into_corner(&edges[a], s, &edges[k], t, deflection, v, area)
-            } else {
-                None
-            };
+            // (a chamfer the offset leaves), worked into as one: where the lines of the edges
+            // either side meet within half a width of their ends.
+            let near = v.width / 2.0;
+            let corner =
+                if skipped <= near && s >= a_from && s <= edges[a].length + near && t >= -near {
+                    into_corner(&edges[a], s, &edges[k], t, deflection, v, area)
+                } else {
+                    None
+                };
             if let Some((run, turn)) = corner {
                 push_line(&mut out, &mut position, s + run - a_from);
                 manoeuvres.push(Manoeuvre {
                     pieces: out.len()..out.len() + turn.segments.len(),
                     form: turn.form,
-                    inside: true,
+                    inside: turn.inside,
                 });
                 out.extend(turn.segments);
                 let at = edges[k].from + edges[k].dir * (t - run);
@@ -451,13 +455,14 @@ fn is_bend(turn: &Turn, deflection: f64) -> bool {
 /// reverses to work into the corner instead.
 const CORNER_CROP_WIDTHS2: f64 = 0.25;
 
-/// How a machine that reverses works into a sharp corner of a pass (from the edge `from`, `s`
-/// along it, onto the edge `onto`, `t` along it) rather than rounding it, where the rounding
-/// would leave at least [`CORNER_CROP_WIDTHS2`] of crop: it works on past the corner as far as
-/// the implement's bar stays in the field (half a width past a square corner), turns with the
-/// implement lifted, and sets off on the next edge as far before the corner. The run past the
-/// corner and the turn, which stays in `area`; `None` where it does not, or where no area is
-/// given (a line that is not worked).
+/// How a machine whose passes are exact ([`Vehicle::exact_passes`]) works into a sharp corner of
+/// a pass (from the edge `from`, `s` along it, onto the edge `onto`, `t` along it) rather than
+/// rounding it, where the rounding would leave at least [`CORNER_CROP_WIDTHS2`] of crop: it works
+/// on past the corner as far as the implement's bar stays in the field (half a width past a
+/// square corner), turns with the implement lifted, and sets off on the next edge as far before
+/// the corner. The run past the corner and the turn, the cheapest that stays in `area` (with
+/// headland corners `manoeuvre`, the cheapest of all where none does); `None` where none does
+/// (`auto`), or where no area is given (a line that is not worked).
 fn into_corner(
     from: &Edge,
     s: f64,
@@ -467,7 +472,7 @@ fn into_corner(
     v: &Vehicle,
     area: Option<&Area>,
 ) -> Option<(f64, Turn)> {
-    let area = area.filter(|_| v.reverse && !v.pivots())?;
+    let area = area.filter(|_| v.exact_passes() && !v.pivots())?;
     let half = v.width / 2.0;
     let d = deflection.abs() / 2.0;
     let rim = v.turn_radius + half;
@@ -485,7 +490,7 @@ fn into_corner(
         Pose::new(before.x, before.y, onto.heading),
         area,
     );
-    turn.inside.then_some((run, turn))
+    (turn.inside || v.corners == HeadlandCorners::Manoeuvre).then_some((run, turn))
 }
 
 /// Whether the implement working along `segments` stays in `area` (to a centimetre; true

@@ -56,6 +56,8 @@ pub struct Vehicle {
     pub turn_radius: f64,
     /// Whether it may reverse.
     pub reverse: bool,
+    /// How it drives the sharp corners of headland passes (see [`crate::path::follow`]).
+    pub corners: crate::headland::HeadlandCorners,
     /// Largest change of curvature per metre driven, 1/m²; `None`: arcs join lines directly.
     pub curvature_rate: Option<f64>,
     /// Working speed, metres per second.
@@ -70,6 +72,7 @@ impl Default for Vehicle {
             width: 6.0,
             turn_radius: 8.0,
             reverse: false,
+            corners: crate::headland::HeadlandCorners::Auto,
             curvature_rate: None,
             working_speed: 8.0 / 3.6,
             turning_speed: 5.0 / 3.6,
@@ -168,6 +171,17 @@ pub fn cusps(segments: &[Segment]) -> usize {
 }
 
 impl Vehicle {
+    /// Whether its headland passes are the field's exact offsets, worked into at their corners
+    /// ([`crate::path::follow`]), rather than rounded at the turning radius: with headland
+    /// corners `manoeuvre`, or `auto` where it reverses.
+    pub fn exact_passes(&self) -> bool {
+        match self.corners {
+            crate::headland::HeadlandCorners::Round => false,
+            crate::headland::HeadlandCorners::Auto => self.reverse,
+            crate::headland::HeadlandCorners::Manoeuvre => true,
+        }
+    }
+
     /// Whether it turns on the spot: a turning radius of (nearly) nothing.
     pub fn pivots(&self) -> bool {
         self.turn_radius.is_nan() || self.turn_radius <= MIN_TURN_RADIUS_M

@@ -21,10 +21,10 @@
 
 use crate::objective::{turn_length, TurnLengths};
 use crate::swath::Swath;
-use serde::{Deserialize, Serialize};
+use serde::Serialize;
 
 /// The pattern option: how the swaths of each block are ordered.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum SwathPattern {
     /// Swath after swath across the block, turning into the next one.
@@ -39,6 +39,8 @@ pub enum SwathPattern {
     #[default]
     Auto,
 }
+
+crate::named::named!(SwathPattern { "boustrophedon" => Boustrophedon, "snake" => Snake, "spiral" => Spiral, "custom" => Custom, "auto" => Auto });
 
 impl SwathPattern {
     /// The option's name.
