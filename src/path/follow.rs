@@ -16,6 +16,12 @@
 //! would put the implement out of the field (round a concave corner tighter than the turning
 //! radius) is reported too, as a manoeuvre of form `lifted`.
 //!
+//! A machine whose passes are exact ([`Vehicle::exact_passes`]: one that reverses, or any with
+//! headland corners `manoeuvre`) works into a sharp corner where rounding it would leave crop:
+//! on past the corner until the implement's bar meets the next side, a manoeuvre with the
+//! implement lifted, and off along the next edge from as far before the corner, so that the two
+//! strips cover the corner between them.
+//!
 //! ```
 //! use furrow::path::curve;
 //! use furrow::path::follow::follow;
@@ -451,8 +457,8 @@ fn is_bend(turn: &Turn, deflection: f64) -> bool {
     turn.inside && turned <= deflection + std::f64::consts::FRAC_PI_3 + 1e-9
 }
 
-/// Least crop (in working widths squared) the rounding of a corner must leave for a machine that
-/// reverses to work into the corner instead.
+/// Least crop (in working widths squared) the rounding of a corner must leave for a machine
+/// whose passes are exact to work into the corner instead.
 const CORNER_CROP_WIDTHS2: f64 = 0.25;
 
 /// How a machine whose passes are exact ([`Vehicle::exact_passes`]) works into a sharp corner of
