@@ -442,6 +442,24 @@ test("viewer: obstacle classes, lifted swaths, headland only where needed", { ti
     assert.equal(await page.evaluate(() => window.furrow.options.headlandCorners), "manoeuvre");
     const exact = await passes();
     assert.ok(exact > rounded, `headland passes ${exact} m with the corners worked into, ${rounded} m rounded`);
+    // Worked by passes to the middle: headlandPasses "all", the count input idle, no swaths
+    // across the field (only pieces filling what the passes leave), the count laid shown.
+    await page.selectOption("#headlandMode", "constant");
+    await ready(page);
+    assert.equal(await page.inputValue("#workedAs"), "swaths", "swaths inside the headland by default");
+    await page.selectOption("#workedAs", "passes");
+    await ready(page);
+    assert.equal(await page.evaluate(() => window.furrow.options.headlandPasses), "all");
+    assert.ok(await page.isDisabled("#headlandPasses"), "the number of passes is the field's");
+    const contour = await page.evaluate(() => window.furrow.plan.summary);
+    assert.equal(contour.swath_count, contour.fill_swath_count, "no swaths across the field");
+    assert.ok(contour.headland_passes > 2, `${contour.headland_passes} passes`);
+    assert.match(await page.textContent("#summary"), new RegExp(`${contour.headland_passes} \\(all\\)`));
+    await page.screenshot({ path: join(SHOTS, "viewer-passes-to-the-middle.png") });
+    await page.selectOption("#workedAs", "swaths");
+    await ready(page);
+    assert.notEqual(await page.evaluate(() => window.furrow.options.headlandPasses), "all");
+    assert.ok(!(await page.isDisabled("#headlandPasses")));
   });
 });
 

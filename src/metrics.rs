@@ -29,7 +29,8 @@ pub struct Summary {
     /// Number of headland passes (a pass split at a neck counts once per part).
     pub headland_pass_count: usize,
     /// Headland passes laid around the field: the count asked for, the count `auto` chose for
-    /// the machine's turns, or fewer where those left no inner field (with a warning).
+    /// the machine's turns, or fewer where those left no inner field (with a warning) or where
+    /// the field holds no more (as `all` lays them).
     pub headland_passes: u32,
     /// Distance driven working: swaths and headland passes.
     pub working_distance_m: f64,

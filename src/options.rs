@@ -7,7 +7,7 @@ use crate::error::{ErrorCode, PlanError};
 use crate::field::place::{place_problem, range_problem, MAX_PLACE_DISTANCE_M};
 use crate::field::Coordinates;
 use crate::geometry::{forbids_every_direction, BearingRange};
-use crate::headland::passes::{passes_for_turns, HeadlandPasses};
+use crate::headland::passes::{passes_for_turns, passes_to_fill, HeadlandPasses};
 use crate::headland::{EdgePasses, HeadlandCorners, HeadlandMode, HeadlandOrder};
 use crate::numbers::{Position, Shortest};
 use crate::objective::{Machine, ObjectiveKind};
@@ -36,8 +36,9 @@ pub struct PlanOptions {
     /// width of each headland pass.
     pub width: f64,
     /// Number of headland passes driven around the field boundary and around each obstacle that
-    /// gets a headland, or `auto`: as many as the machine's turns need
-    /// ([`passes_for_turns`](crate::headland::passes::passes_for_turns)).
+    /// gets a headland; `auto`: as many as the machine's turns need
+    /// ([`passes_for_turns`](crate::headland::passes::passes_for_turns)); `all`: as many as the
+    /// field holds, pass inside pass to the middle (contour work).
     pub headland_passes: HeadlandPasses,
     /// Where the field headland runs: all around (`constant`), or only along edges where swaths
     /// end (`needed`).
@@ -213,8 +214,8 @@ pub const OPTION_DOCS: &[(&str, &str, &str)] = &[
     ),
     (
         "headlandPasses",
-        "count|auto",
-        "number of headland passes around the field and around each obstacle that gets a headland, or auto: as many as the machine's turns between neighbouring swaths need to stay inside the field (default 2)",
+        "count|auto|all",
+        "number of headland passes around the field and around each obstacle that gets a headland; auto: as many as the machine's turns between neighbouring swaths need to stay inside the field; all: as many as the field holds, the whole field worked along its outline (default 2)",
     ),
     (
         "headlandMode",
@@ -686,7 +687,9 @@ impl PlanOptions {
     }
 
     /// The number of headland passes: as given, or for `auto` the fewest whose depth holds the
-    /// machine's turns between neighbouring swaths.
+    /// machine's turns between neighbouring swaths. `all` depends on the field: it is counted
+    /// when planning ([`PlanOptions::with_pass_count`]; the plan's `summary.headland_passes` has
+    /// the passes laid), 0 here.
     ///
     /// ```
     /// use furrow::headland::passes::HeadlandPasses;
@@ -701,14 +704,21 @@ impl PlanOptions {
         match self.headland_passes {
             HeadlandPasses::Count(n) => n,
             HeadlandPasses::Auto => passes_for_turns(&self.vehicle(), MAX_HEADLAND_PASSES),
+            HeadlandPasses::All => 0,
         }
     }
 
-    /// These options with `auto` headland passes replaced by their count; `None` when they
-    /// are a count already.
-    pub fn with_pass_count(&self) -> Option<PlanOptions> {
-        (self.headland_passes == HeadlandPasses::Auto).then(|| PlanOptions {
-            headland_passes: HeadlandPasses::Count(self.headland_pass_count()),
+    /// These options with `auto` headland passes replaced by their count, and `all` by the most
+    /// the field's boundary can hold ([`passes_to_fill`]: the headland stage lays them until
+    /// one finds no room); `None` when they are a count already.
+    pub fn with_pass_count(&self, boundary: &geo::Polygon) -> Option<PlanOptions> {
+        let count = match self.headland_passes {
+            HeadlandPasses::Count(_) => return None,
+            HeadlandPasses::Auto => self.headland_pass_count(),
+            HeadlandPasses::All => passes_to_fill(boundary, self.width),
+        };
+        Some(PlanOptions {
+            headland_passes: HeadlandPasses::Count(count),
             ..self.clone()
         })
     }

@@ -21,6 +21,7 @@ use crate::field::Field;
 use crate::geometry::PlanarHypot;
 use crate::headland::complexity::check_offsets;
 use crate::headland::edges::{passes_per_edge, EdgeRule};
+use crate::headland::passes::HeadlandPasses;
 use crate::headland::{build, EdgePasses, HeadlandSettings, Headlands};
 use crate::metrics::{DecompositionReport, StageTimes, Summary};
 use crate::numbers::{Decimals, Shortest};
@@ -152,12 +153,22 @@ pub(crate) fn plan_stages(
     options: &PlanOptions,
     warnings: Vec<Warning>,
 ) -> Result<Plan, PlanError> {
-    // `auto` passes are counted once, from the machine: the plan reports the count laid.
-    let counted = options.with_pass_count();
+    options.validate()?;
+    // `auto` passes are counted once, from the machine, and `all` from the field's size: the
+    // plan reports the count laid.
+    let counted = options.with_pass_count(&field.boundary);
+    let asked = options;
     let options = counted.as_ref().unwrap_or(options);
+    // Passes to the middle leave no inner field by design: the plan says `all`.
+    if asked.headland_passes == HeadlandPasses::All {
+        return plan_with_passes(field, options, warnings, true).map(|mut plan| {
+            plan.options.headland_passes = HeadlandPasses::All;
+            plan
+        });
+    }
     // Kept for planning again with fewer passes (a copy of the outlines: far less than a plan).
     let again = (options.headland_pass_count() > 0).then(|| (field.clone(), warnings.clone()));
-    let planned = plan_with_passes(field, options, warnings);
+    let planned = plan_with_passes(field, options, warnings, false);
     let no_inner_field = match &planned {
         // Swaths that only fill what the passes leave are no inner field.
         Ok(plan) => plan.summary.swath_count == plan.summary.fill_swath_count,
@@ -209,7 +220,7 @@ fn fewer_passes(field: &Field, options: &PlanOptions, warnings: &[Warning]) -> O
                 .collect(),
             ..options.clone()
         };
-        plan_with_passes(field.clone(), &fewer, warnings.to_vec())
+        plan_with_passes(field.clone(), &fewer, warnings.to_vec(), false)
             .ok()
             .filter(|p| {
                 p.summary.swath_count > p.summary.fill_swath_count
@@ -252,7 +263,8 @@ fn fewer_passes(field: &Field, options: &PlanOptions, warnings: &[Warning]) -> O
     Some(plan)
 }
 
-/// The stages, in order, with the headland passes `options` asks for.
+/// The stages, in order, with the headland passes `options` asks for (to the field's middle,
+/// `to_middle`, where `headlandPasses` is `all`).
 ///
 /// The field is cleaned and checked ([`clean_field`]), its direction chosen
 /// ([`direction_mode`], [`choose_direction`]), its headlands laid ([`lay_headlands`]); then
@@ -262,10 +274,10 @@ fn plan_with_passes(
     mut field: Field,
     options: &PlanOptions,
     mut warnings: Vec<Warning>,
+    to_middle: bool,
 ) -> Result<Plan, PlanError> {
     let mut times = StageTimes::default();
     let mut clock = Instant::now();
-    options.validate()?;
     options.check_places(&field)?;
     let with_field = options.with_field(&field);
     let options = with_field.as_ref().unwrap_or(options);
@@ -276,7 +288,8 @@ fn plan_with_passes(
     let mode = direction_mode(&field, options, &mut warnings)?;
     let direction = choose_direction(&field, options, mode, &search)?;
     times.lap(&mut clock, |t| &mut t.direction);
-    let (obstacles, headlands, all_around) = lay_headlands(&field, options, direction.bearing)?;
+    let (obstacles, headlands, all_around) =
+        lay_headlands(&field, options, direction.bearing, to_middle)?;
     let methods = auto::decompositions(options.decomposition, mode, all_around)?;
     times.lap(&mut clock, |t| &mut t.headlands);
     // The swaths at the field's direction, shared by the single-direction decompositions.
@@ -494,11 +507,13 @@ fn choose_direction(
 
 /// The obstacle classes and the headland passes at the field's direction: along each edge of
 /// the field (all around, or only where the swaths end), round each obstacle that gets a
-/// headland, and the inner field they leave; and whether the field's headland runs all around.
+/// headland, and the inner field they leave (none `to_middle`); and whether the field's
+/// headland runs all around.
 fn lay_headlands(
     field: &Field,
     options: &PlanOptions,
     bearing: f64,
+    to_middle: bool,
 ) -> Result<(ObstacleClasses, Headlands, bool), PlanError> {
     let width = options.width;
     let edge_passes = passes_per_edge(
@@ -531,6 +546,7 @@ fn lay_headlands(
             exact: options.vehicle().exact_passes(),
             obstacle_passes: options.headland_pass_count(),
             edge_passes: &edge_passes,
+            to_middle,
         },
     )
     .map_err(|e| e.at_feature(field.feature))?;
@@ -585,7 +601,9 @@ fn assemble(
     } = chosen;
     summary.decomposition = decomposition;
     summary.route.pattern = options.pattern;
-    summary.headland_passes = options.headland_pass_count();
+    // The passes laid: as many as asked, or as many as found room.
+    let laid = headlands.passes.iter().map(|p| p.index).max().unwrap_or(0);
+    summary.headland_passes = options.headland_pass_count().min(laid as u32);
     warnings.extend(own_warnings);
     Plan {
         field,

@@ -230,6 +230,55 @@ fn a_strip_too_narrow_for_an_inner_field_is_worked_by_its_pass_round_it() {
     );
 }
 
+#[test]
+fn passes_to_the_middle_work_a_bent_strip_along_its_length() {
+    // The 40 m strip at a 6 m drill's width: with two headland passes its middle is worked
+    // across by straight swaths short of its bends; with `headlandPasses: "all"` three passes
+    // go round it inside each other and a fourth round what they leave down its middle, each
+    // along the whole strip: more of it worked, in less time.
+    for reverse in [false, true] {
+        let options = |headland_passes| furrow::PlanOptions {
+            width: 6.0,
+            headland_passes,
+            turn_radius: 8.0,
+            reverse,
+            coordinates: furrow::field::Coordinates::Metric,
+            ..furrow::PlanOptions::default()
+        };
+        let two =
+            plan_geojson(&curved_strip(), &options(2.into())).unwrap_or_else(|e| panic!("{e}"));
+        let all = plan_geojson(
+            &curved_strip(),
+            &options(furrow::headland::passes::HeadlandPasses::All),
+        )
+        .unwrap_or_else(|e| panic!("{e}"));
+        assert_eq!(all.summary.headland_passes, 4, "reversing {reverse}");
+        assert!(two.summary.swath_count > two.summary.fill_swath_count);
+        assert_eq!(all.summary.swath_count, all.summary.fill_swath_count);
+        let (worked_two, worked_all) = (
+            independent_coverage(&two, 0.5),
+            independent_coverage(&all, 0.5),
+        );
+        let least = if reverse { 0.99 } else { 0.975 };
+        assert!(
+            worked_all >= least && worked_all > worked_two + 0.005,
+            "reversing {reverse}: {worked_all:.4} worked along, {worked_two:.4} across"
+        );
+        assert!(
+            (all.summary.coverage.coverage_ratio - worked_all).abs() <= 0.005,
+            "reversing {reverse}: the planner's {:.4} against {worked_all:.4}",
+            all.summary.coverage.coverage_ratio
+        );
+        assert!(
+            all.summary.estimated_time_s < two.summary.estimated_time_s,
+            "reversing {reverse}: {} s along, {} s across",
+            all.summary.estimated_time_s,
+            two.summary.estimated_time_s
+        );
+        assert!(worked_outside(&all, 0.5) < 1.0);
+    }
+}
+
 /// A 120 x 80 m block with a bent arm 14 m wide off its north-west corner, in local metres:
 /// north 106 m, then east 86 m to a dead end.
 fn block_with_a_bent_arm() -> String {

@@ -870,3 +870,50 @@ fn auto_headland_passes_hold_the_machines_turns() {
     assert_eq!(any_order.summary.turns_outside_field, 0);
     assert_eq!(turn_points_outside(&any_order, &field), 0);
 }
+
+#[test]
+fn passes_to_the_middle_work_every_corpus_field_along_its_outline() {
+    // `headlandPasses: "all"`: pass inside pass until the field holds no more, then one round
+    // what is left; no inner field for swaths, only fill pieces for what the passes leave.
+    for field in valid_fields().into_iter().filter(|f| f.area_ha <= 60.0) {
+        for reverse in [false, true] {
+            let options = PlanOptions {
+                headland_passes: HeadlandPasses::All,
+                reverse,
+                ..field.options.clone()
+            };
+            let name = format!("{} reversing {reverse}", field.name);
+            let p = plan(&field.text(), &options, &name);
+            assert_eq!(p.options.headland_passes, HeadlandPasses::All, "{name}");
+            assert!(p.headlands.inner.0.is_empty(), "{name}: an inner field");
+            assert_eq!(
+                p.summary.swath_count, p.summary.fill_swath_count,
+                "{name}: swaths across the field"
+            );
+            // Passes 1 to n, none missing, n the count reported.
+            let most = p
+                .headlands
+                .passes
+                .iter()
+                .map(|q| q.index)
+                .max()
+                .unwrap_or(0);
+            assert!(most >= 2, "{name}: {most} passes");
+            assert_eq!(p.summary.headland_passes as usize, most, "{name}");
+            for k in 1..=most {
+                assert!(
+                    p.headlands.passes.iter().any(|q| q.index == k),
+                    "{name}: pass {k}"
+                );
+            }
+            let c = &p.summary.coverage;
+            let least = if reverse { 0.99 } else { 0.95 };
+            assert!(
+                c.coverage_ratio >= least * c.reachable_ratio,
+                "{name}: {:.4} of {:.4}",
+                c.coverage_ratio,
+                c.reachable_ratio
+            );
+        }
+    }
+}

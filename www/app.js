@@ -29,6 +29,7 @@ export const OPTION_INPUTS = [
   "headlandMode",
   "headlandOrder",
   "headlandCorners",
+  "workedAs",
   "obstacleThreshold",
   "objective",
   "search",

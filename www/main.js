@@ -33,7 +33,7 @@ import {
 import { bindParcels, picker } from "./parcels.js";
 import { initPlanner } from "./planner.js";
 import { replan, showFailure, updateHighlights } from "./planning.js";
-import { applySuggested, readOptions, readSession, restoreSettings, saveSettings, settingsChanged, showDirectionInputs, showMoreState } from "./settings.js";
+import { applySuggested, readOptions, readSession, restoreSettings, saveSettings, settingsChanged, showDependentInputs, showMoreState } from "./settings.js";
 
 const DEFAULT_FIELD = "obstacle-types";
 let tiles = null; // the background map, made when a URL is set
@@ -178,16 +178,16 @@ function bindControls() {
     const fixed = ui.inputs.bearing.value.trim() !== "" || ui.inputs.bearing.validity.badInput;
     if (fixed) ui.inputs.direction.value = "fixed";
     else if (ui.inputs.direction.value === "fixed") ui.inputs.direction.value = "search";
-    showDirectionInputs();
+    showDependentInputs();
     saveSettings();
   });
   ui.inputs.direction.addEventListener("input", () => {
     if (ui.inputs.direction.value === "edge" && ui.inputs.referenceEdge.value.trim() === "") tool.setMode("edge");
     if (ui.inputs.direction.value === "line" && !referenceLineOf(history.doc ?? emptyField())) tool.setMode("abline");
-    showDirectionInputs();
+    showDependentInputs();
   });
   for (const input of Object.values(ui.inputs)) input.addEventListener("input", settingsChanged);
-  showDirectionInputs();
+  showDependentInputs();
   ui.driveSpeed.addEventListener("input", () => {
     saveSettings();
     if (driver.running) driver.start(Number(ui.driveSpeed.value));

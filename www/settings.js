@@ -10,6 +10,7 @@ const BOOLEANS = new Set(["reverse"]); // <select>s of "true" and "false"
 const OPTIONAL = new Set(["bearing", "obstacleThreshold", "referenceEdge", "curvatureRate"]); // empty: null, the planner's default
 const TEXTS = new Set(["forbiddenBearings"]); // read by their own parser
 const AUTO = new Set(["headlandPasses"]); // empty: "auto", the planner works the number out
+const WORKED_AS = "workedAs"; // not an option: "passes" asks for headlandPasses "all"
 const SETTINGS_KEY = "furrow.settings";
 const SESSION_KEY = "furrow.session";
 const KEPT_INPUTS = [...OPTION_INPUTS, "drive-speed", "tile-url", "way-turning"]; // what persists across visits
@@ -28,8 +29,13 @@ export function readOptions() {
     bearing: "bearing",
     obstacleThreshold: "obstacle threshold",
   };
+  const passesOnly = ui.inputs[WORKED_AS].value === "passes";
   for (const [id, input] of Object.entries(ui.inputs)) {
-    if (TEXTS.has(id)) continue;
+    if (TEXTS.has(id) || id === WORKED_AS) continue;
+    if (id === "headlandPasses" && passesOnly) {
+      options[id] = "all";
+      continue;
+    }
     if (CHOICES.has(id)) {
       options[id] = BOOLEANS.has(id) ? input.value === "true" : input.value;
       continue;
@@ -111,13 +117,16 @@ export function showMoreState() {
 }
 
 export function settingsChanged() {
-  showDirectionInputs();
+  showDependentInputs();
   saveSettings();
   replan();
 }
 
-export function showDirectionInputs() {
+/** The inputs that depend on others: the edge number on the direction, the number of passes
+ * on how the field is worked (passes to the middle: as many as it holds). */
+export function showDependentInputs() {
   $("edge-input").hidden = ui.inputs.direction.value !== "edge";
+  ui.inputs.headlandPasses.disabled = ui.inputs[WORKED_AS].value === "passes";
 }
 
 /** A bearing, an edge number or an AB line belong to one field: another starts from the search. */
@@ -125,7 +134,7 @@ export function forgetFieldReferences() {
   ui.inputs.bearing.value = "";
   ui.inputs.referenceEdge.value = "";
   if (ui.inputs.direction.value !== "longest-edge") ui.inputs.direction.value = "search";
-  showDirectionInputs();
+  showDependentInputs();
 }
 
 /** The field's suggested machine settings; the headland mode, order and obstacle threshold are

@@ -29,10 +29,10 @@ export function renderSummary(s, options, callMs) {
     ],
     [
       "Headland passes",
-      `${s.headland_passes ?? 0}${options.headlandPasses === "auto" ? " (auto)" : ""}`,
+      `${s.headland_passes ?? 0}${options.headlandPasses === "auto" || options.headlandPasses === "all" ? ` (${options.headlandPasses})` : ""}`,
       {
         key: "headland_passes",
-        title: "Passes around the field; auto: as many as the machine's turns between neighbouring swaths need",
+        title: "Passes around the field; auto: as many as the machine's turns between neighbouring swaths need; all: as many as the field holds",
       },
     ],
     ["Working distance", km(s.working_distance_m), { key: "working_distance_m" }],

@@ -85,12 +85,14 @@ export interface PlanOptions {
   /** Working width of the implement, metres: swath spacing and headland pass width. Default 6. */
   width?: number;
   /**
-   * Number of headland passes around the field and around each obstacle that gets a headland,
-   * or `"auto"`: as many as the machine's turns between neighbouring swaths need to stay inside
-   * the field (from `width`, `turnRadius`, `reverse` and `curvatureRate`). The plan reports the
-   * number laid in `summary.headland_passes`. Default 2.
+   * Number of headland passes around the field and around each obstacle that gets a headland;
+   * `"auto"`: as many as the machine's turns between neighbouring swaths need to stay inside
+   * the field (from `width`, `turnRadius`, `reverse` and `curvatureRate`); `"all"`: as many as
+   * the field holds, pass inside pass to its middle, so that the whole field is worked along its
+   * outline (contour work: narrow and bent fields). The plan reports the number laid in
+   * `summary.headland_passes`. Default 2.
    */
-  headlandPasses?: number | "auto";
+  headlandPasses?: number | "auto" | "all";
   /**
    * Where the field headland runs: `"constant"`, all around the field, or `"needed"`, only along
    * edges where swaths end. Default `"constant"`.
@@ -352,7 +354,8 @@ export interface PlanSummary {
   headland_pass_count: number;
   /**
    * Headland passes laid around the field: the count asked for, the count `"auto"` chose, or
-   * fewer where those left no inner field (with a `headland_passes_reduced` warning).
+   * fewer where those left no inner field (with a `headland_passes_reduced` warning) or where
+   * the field holds no more (as `"all"` lays them).
    */
   headland_passes: number;
   /** Swaths and headland passes. */

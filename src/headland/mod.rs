@@ -156,6 +156,12 @@ pub struct HeadlandSettings<'a> {
     pub obstacle_passes: u32,
     /// Passes along each edge of the boundary's outer ring (edge `i` from point `i`).
     pub edge_passes: &'a [u32],
+    /// Whether the passes go on to the middle of the field (`headlandPasses: "all"`): after the
+    /// last that finds room, one more goes round what is left narrower than a pass, a quarter
+    /// width into it, and no inner field is left for swaths. Where some edges have fewer passes
+    /// than others (edge passes, or a headland only where swaths end), passes are laid along
+    /// the others until they find no room, and the inner field is what they leave.
+    pub to_middle: bool,
 }
 
 /// Cuts `passes` headland passes of `width` all around the field and its obstacles, with sharp
@@ -188,6 +194,7 @@ pub fn constant_width(field: &Field, width: f64, passes: u32) -> Result<Headland
             exact: true,
             obstacle_passes: passes,
             edge_passes: &edges,
+            to_middle: false,
         },
     )
     .map_err(|e| e.at_feature(field.feature))
@@ -209,6 +216,7 @@ pub fn constant_width(field: &Field, width: f64, passes: u32) -> Result<Headland
 ///     exact: false,
 ///     obstacle_passes: 2,
 ///     edge_passes: &[0, 2, 0, 2],
+///     to_middle: false,
 /// };
 /// let h = build(&field, &[], &settings)?;
 /// assert!((h.inner.unsigned_area() - 176.0 * 100.0).abs() < 1e-6);
@@ -243,7 +251,7 @@ pub fn build(
         .unwrap_or(0);
 
     let mut passes = Vec::new();
-    for k in 1..=most {
+    for k in 1..=most + u32::from(settings.to_middle) {
         let d = (k as f64 - 0.5) * w;
         let constraints = if uniform {
             Vec::new()
@@ -259,7 +267,7 @@ pub fn build(
         // The opening of the pass's room by the turning disc; where the disc fits nowhere, the
         // room itself: the pass is laid exact and the path drives its corners with manoeuvres
         // (lifted where one would work outside), rather than dropped.
-        let drivable = if settings.exact {
+        let mut drivable = if settings.exact {
             if uniform {
                 inset(&region, d)
             } else {
@@ -285,6 +293,16 @@ pub fn build(
                 opened
             }
         };
+        let middle = drivable.0.is_empty() && settings.to_middle && uniform;
+        if middle {
+            // What the last pass leaves, narrower than a pass: one more round it, a quarter
+            // width into it, works it from both sides.
+            drivable = inset(&region, (k as f64 - 0.75) * w);
+        }
+        if drivable.0.is_empty() {
+            // No room for this pass, nor for any deeper one.
+            break;
+        }
         for polygon in &drivable.0 {
             let rings = std::iter::once((polygon.exterior(), PassAround::Field)).chain(
                 polygon
@@ -319,9 +337,14 @@ pub fn build(
                 }
             }
         }
+        if middle {
+            break;
+        }
     }
 
-    let inner = if uniform {
+    let inner = if settings.to_middle && uniform {
+        MultiPolygon::new(Vec::new())
+    } else if uniform {
         inset(&region, first as f64 * w)
     } else {
         let cs = constraints(ring, holes, &edge_passes, h, |n| (n as f64 * w, n > 0));
@@ -652,6 +675,40 @@ mod tests {
     }
 
     #[test]
+    fn passes_stop_where_the_field_has_no_room_and_to_the_middle_one_goes_round_the_rest() {
+        // 40 m across at 6 m: passes 3, 9 and 15 m in; a fourth, 21 m in, has no room.
+        let settings = |to_middle| HeadlandSettings {
+            width: 6.0,
+            turn_radius: 0.0,
+            exact: true,
+            obstacle_passes: 50,
+            edge_passes: &[50, 50, 50, 50],
+            to_middle,
+        };
+        let asked = build(&rectangle(150.0, 40.0), &[], &settings(false)).unwrap();
+        let indices: Vec<usize> = asked.passes.iter().map(|p| p.index).collect();
+        assert_eq!(indices, [1, 2, 3]);
+        assert!(asked.inner.0.is_empty());
+        // To the middle: a fourth round the 4 m left, a quarter width (19.5 m) in, so that its
+        // strip covers the rest from both sides; no inner field.
+        let middle = build(&rectangle(150.0, 40.0), &[], &settings(true)).unwrap();
+        assert_eq!(middle.passes.len(), 4);
+        let last = &middle.passes[3];
+        assert_eq!(last.index, 4);
+        let ys: Vec<f64> = last.line.0.iter().map(|c| c.y).collect();
+        let (lo, hi) = ys
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &y| {
+                (a.min(y), b.max(y))
+            });
+        assert!(
+            (lo - 19.5).abs() < 1e-6 && (hi - 20.5).abs() < 1e-6,
+            "{lo} {hi}"
+        );
+        assert!(middle.inner.0.is_empty());
+    }
+
+    #[test]
     fn a_pass_the_turning_disc_fits_nowhere_is_laid_exact() {
         // 40 m wide at 24 m with turns of 9 m: the first pass's room (12 m in, 16 m wide) holds
         // no 18 m disc. Its exact offset is the pass: straight sides 16 m apart, sharp corners.
@@ -661,6 +718,7 @@ mod tests {
             exact: false,
             obstacle_passes: 1,
             edge_passes: &[1, 1, 1, 1],
+            to_middle: false,
         };
         let h = build(&rectangle(150.0, 40.0), &[], &settings).unwrap();
         assert_eq!(h.passes.len(), 1);
@@ -688,6 +746,7 @@ mod tests {
             exact,
             obstacle_passes: 2,
             edge_passes: &[2, 2, 2, 2],
+            to_middle: false,
         };
         let field = rectangle(100.0, 60.0);
         let exact = build(&field, &[], &settings(true)).unwrap();

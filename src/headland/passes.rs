@@ -1,5 +1,6 @@
-//! How many headland passes: the option's count, or (`headlandPasses: "auto"`) as many as the
-//! machine's turns need.
+//! How many headland passes: the option's count, (`headlandPasses: "auto"`) as many as the
+//! machine's turns need, or (`"all"`) as many as the field holds: the whole field worked along
+//! its outline, pass inside pass to the middle ([`passes_to_fill`]).
 //!
 //! Swaths end at the inner edge of the headland, `h·w` inside the boundary for `h` passes of
 //! width `w`. A turn from one swath end to the next reaches beyond the ends by a depth that
@@ -15,19 +16,22 @@
 
 use crate::path::curve::{Pose, Segment};
 use crate::path::turn::{chord_poses, Vehicle};
+use geo::{BoundingRect, Polygon};
 use serde::de::{self, Visitor};
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 use std::fmt;
 
-/// The number of headland passes asked for: a count, or `auto` for the fewest passes of the
+/// The number of headland passes asked for: a count, `auto` for the fewest passes of the
 /// machine's width whose depth holds its turns between neighbouring swaths
-/// ([`passes_for_turns`]). In JSON a number or `"auto"`.
+/// ([`passes_for_turns`]), or `all` for as many as the field holds ([`passes_to_fill`]). In
+/// JSON a number, `"auto"` or `"all"`.
 ///
 /// ```
 /// use furrow::headland::passes::HeadlandPasses;
 ///
 /// let auto: HeadlandPasses = serde_json::from_str(r#""auto""#)?;
 /// assert_eq!(auto, HeadlandPasses::Auto);
+/// assert_eq!(serde_json::from_str::<HeadlandPasses>(r#""all""#)?, HeadlandPasses::All);
 /// assert_eq!(serde_json::from_str::<HeadlandPasses>("3")?, HeadlandPasses::Count(3));
 /// assert_eq!(HeadlandPasses::from(2).count(), Some(2));
 /// assert!(serde_json::from_str::<HeadlandPasses>(r#""many""#).is_err());
@@ -39,14 +43,16 @@ pub enum HeadlandPasses {
     Count(u32),
     /// As many as the machine's turns need.
     Auto,
+    /// As many as the field holds: it is worked along its outline to the middle.
+    All,
 }
 
 impl HeadlandPasses {
-    /// The count, `None` for `auto`.
+    /// The count, `None` for `auto` and `all`.
     pub fn count(self) -> Option<u32> {
         match self {
             HeadlandPasses::Count(n) => Some(n),
-            HeadlandPasses::Auto => None,
+            HeadlandPasses::Auto | HeadlandPasses::All => None,
         }
     }
 }
@@ -62,6 +68,7 @@ impl Serialize for HeadlandPasses {
         match self {
             HeadlandPasses::Count(n) => serializer.serialize_u32(*n),
             HeadlandPasses::Auto => serializer.serialize_str("auto"),
+            HeadlandPasses::All => serializer.serialize_str("all"),
         }
     }
 }
@@ -72,14 +79,14 @@ impl<'de> Deserialize<'de> for HeadlandPasses {
     }
 }
 
-/// Reads a count of passes or `"auto"`.
+/// Reads a count of passes, `"auto"` or `"all"`.
 struct PassesVisitor;
 
 impl Visitor<'_> for PassesVisitor {
     type Value = HeadlandPasses;
 
     fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
-        f.write_str("a whole number of passes or \"auto\"")
+        f.write_str("a whole number of passes, \"auto\" or \"all\"")
     }
 
     fn visit_u64<E: de::Error>(self, n: u64) -> Result<HeadlandPasses, E> {
@@ -97,6 +104,8 @@ impl Visitor<'_> for PassesVisitor {
     fn visit_str<E: de::Error>(self, s: &str) -> Result<HeadlandPasses, E> {
         if s == "auto" {
             Ok(HeadlandPasses::Auto)
+        } else if s == "all" {
+            Ok(HeadlandPasses::All)
         } else {
             Err(E::invalid_value(de::Unexpected::Str(s), &self))
         }
@@ -166,6 +175,28 @@ pub fn passes_for_turns(vehicle: &Vehicle, most: u32) -> u32 {
     }
 }
 
+/// The passes of `width` that can fit into a field with `boundary`, at most: pass `k` runs
+/// `(k - 1/2) width` inside the boundary, and none runs deeper than half the narrower side of
+/// the boundary's box. The headland stage lays them inward until one finds no room, so a bound
+/// is enough; `headlandPasses: "all"` asks for it.
+///
+/// ```
+/// use furrow::headland::passes::passes_to_fill;
+/// use geo::polygon;
+///
+/// // A strip 40 m across: passes at 3, 9 and 15 m in; a fourth, 21 m in, would be past its
+/// // middle.
+/// let strip = polygon![(x: 0., y: 0.), (x: 500., y: 0.), (x: 500., y: 40.), (x: 0., y: 40.)];
+/// assert_eq!(passes_to_fill(&strip, 6.0), 3);
+/// ```
+pub fn passes_to_fill(boundary: &Polygon, width: f64) -> u32 {
+    let Some(rect) = boundary.bounding_rect() else {
+        return 0;
+    };
+    // `as` saturates, and takes NaN to 0.
+    (rect.width().min(rect.height()) / (2.0 * width) + 0.5).floor() as u32
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -231,18 +262,23 @@ mod tests {
     }
 
     #[test]
-    fn json_is_a_count_or_auto() {
+    fn json_is_a_count_auto_or_all() {
         let read = serde_json::from_str::<HeadlandPasses>;
         assert_eq!(read("0").ok(), Some(HeadlandPasses::Count(0)));
         assert_eq!(read("\"auto\"").ok(), Some(HeadlandPasses::Auto));
         for bad in ["-1", "2.5", "\"Auto\"", "null", "[2]", "4294967296"] {
             let e = read(bad).err().map(|e| e.to_string()).unwrap_or_default();
             assert!(
-                e.contains("a whole number of passes or \"auto\""),
+                e.contains("a whole number of passes, \"auto\" or \"all\""),
                 "{bad}: {e}"
             );
         }
-        for p in [HeadlandPasses::Count(7), HeadlandPasses::Auto] {
+        assert_eq!(read("\"all\"").ok(), Some(HeadlandPasses::All));
+        for p in [
+            HeadlandPasses::Count(7),
+            HeadlandPasses::Auto,
+            HeadlandPasses::All,
+        ] {
             let text = serde_json::to_string(&p).unwrap_or_default();
             assert_eq!(serde_json::from_str::<HeadlandPasses>(&text).ok(), Some(p));
         }
