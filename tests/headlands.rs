@@ -917,3 +917,27 @@ fn passes_to_the_middle_work_every_corpus_field_along_its_outline() {
         }
     }
 }
+
+#[test]
+fn the_pass_round_a_strips_middle_is_counted() {
+    // 40 m across at 6 m: three passes (3, 9 and 15 m in) and one round the 4 m they leave,
+    // 19.5 m in; the plan reports the four it lays.
+    let text =
+        r#"{"type": "Polygon", "coordinates": [[[0, 0], [500, 0], [500, 40], [0, 40], [0, 0]]]}"#;
+    let options = PlanOptions {
+        width: 6.0,
+        headland_passes: HeadlandPasses::All,
+        reverse: true,
+        coordinates: furrow::field::Coordinates::Metric,
+        ..PlanOptions::default()
+    };
+    let p = plan(text, &options, "strip");
+    let indices: Vec<usize> = p.headlands.passes.iter().map(|q| q.index).collect();
+    assert_eq!(indices, [1, 2, 3, 4]);
+    assert_eq!(p.summary.headland_passes, 4);
+    let middle = &p.headlands.passes[3].line;
+    assert!(middle
+        .0
+        .iter()
+        .all(|c| (c.y - 19.5).abs() < 1e-6 || (c.y - 20.5).abs() < 1e-6));
+}

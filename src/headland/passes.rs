@@ -175,26 +175,26 @@ pub fn passes_for_turns(vehicle: &Vehicle, most: u32) -> u32 {
     }
 }
 
-/// The passes of `width` that can fit into a field with `boundary`, at most: pass `k` runs
-/// `(k - 1/2) width` inside the boundary, and none runs deeper than half the narrower side of
-/// the boundary's box. The headland stage lays them inward until one finds no room, so a bound
-/// is enough; `headlandPasses: "all"` asks for it.
+/// The passes of `width` that can fit into a field with `boundary`, at most, with the one round
+/// what they leave in its middle: pass `k` runs `(k - 1/2) width` inside the boundary, and none
+/// runs deeper than half the narrower side of the boundary's box. The headland stage lays them
+/// inward until one finds no room, so a bound is enough; `headlandPasses: "all"` asks for it.
 ///
 /// ```
 /// use furrow::headland::passes::passes_to_fill;
 /// use geo::polygon;
 ///
-/// // A strip 40 m across: passes at 3, 9 and 15 m in; a fourth, 21 m in, would be past its
-/// // middle.
+/// // A strip 40 m across: passes at 3, 9 and 15 m in (a fourth, 21 m in, would be past its
+/// // middle), and one round the 4 m they leave.
 /// let strip = polygon![(x: 0., y: 0.), (x: 500., y: 0.), (x: 500., y: 40.), (x: 0., y: 40.)];
-/// assert_eq!(passes_to_fill(&strip, 6.0), 3);
+/// assert_eq!(passes_to_fill(&strip, 6.0), 4);
 /// ```
 pub fn passes_to_fill(boundary: &Polygon, width: f64) -> u32 {
     let Some(rect) = boundary.bounding_rect() else {
         return 0;
     };
     // `as` saturates, and takes NaN to 0.
-    (rect.width().min(rect.height()) / (2.0 * width) + 0.5).floor() as u32
+    (rect.width().min(rect.height()) / (2.0 * width) + 1.5).floor() as u32
 }
 
 #[cfg(test)]
