@@ -176,7 +176,9 @@ pub struct PlanError {
 }
 
 impl PlanError {
-    /// An error with a code and a message and no location.
+    /// An error with a code and a message and no location. (Out of line: the planner's module
+    /// is smaller so.)
+    #[inline(never)]
     pub fn new(code: ErrorCode, message: impl Into<String>) -> Self {
         PlanError {
             code,
@@ -371,7 +373,9 @@ pub struct Warning {
 }
 
 impl Warning {
-    /// A warning about the plan or the input as a whole.
+    /// A warning about the plan or the input as a whole. (Out of line: the planner's module is
+    /// smaller so.)
+    #[inline(never)]
     pub fn new(code: WarningCode, message: impl Into<String>) -> Self {
         Warning {
             code,

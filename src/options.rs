@@ -389,19 +389,26 @@ pub const MIN_SPEED_KMH: f64 = 0.1;
 /// Largest working or turning speed accepted, km/h.
 pub const MAX_SPEED_KMH: f64 = 60.0;
 
+/// The error of an option outside its range. (Out of line: one copy of the message's writing
+/// for every option checked.)
+#[inline(never)]
+fn out_of_range(name: &str, value: &dyn std::fmt::Display, range: &str) -> PlanError {
+    PlanError::new(
+        ErrorCode::OptionOutOfRange,
+        format!("option `{name}` is {value}; it must be {range}"),
+    )
+}
+
 impl PlanOptions {
     /// Checks that every option is within the range the planner accepts.
     pub fn validate(&self) -> Result<(), PlanError> {
-        let out_of_range = |name: &str, value: String, range: &str| {
-            Err(PlanError::new(
-                ErrorCode::OptionOutOfRange,
-                format!("option `{name}` is {value}; it must be {range}"),
-            ))
+        let out_of_range = |name: &str, value: &dyn std::fmt::Display, range: &str| {
+            Err(out_of_range(name, value, range))
         };
         if !(self.width.is_finite() && (MIN_WIDTH_M..=MAX_WIDTH_M).contains(&self.width)) {
             return out_of_range(
                 "width",
-                Shortest(self.width).to_string(),
+                &Shortest(self.width),
                 &format!(
                     "between {} and {} metres",
                     Shortest(MIN_WIDTH_M),
@@ -416,7 +423,7 @@ impl PlanOptions {
         {
             return out_of_range(
                 "headlandPasses",
-                n.to_string(),
+                &n,
                 &format!("at most {MAX_HEADLAND_PASSES}"),
             );
         }
@@ -424,23 +431,19 @@ impl PlanOptions {
         {
             return out_of_range(
                 "turnRadius",
-                Shortest(self.turn_radius).to_string(),
+                &Shortest(self.turn_radius),
                 &format!("between 0 and {} metres", Shortest(MAX_TURN_RADIUS_M)),
             );
         }
         if let Some(b) = self.bearing_deg {
             if !b.is_finite() {
-                return out_of_range(
-                    "bearing",
-                    Shortest(b).to_string(),
-                    "a finite number of degrees",
-                );
+                return out_of_range("bearing", &Shortest(b), "a finite number of degrees");
             }
         }
         if let Some(r) = self.forbidden_bearings_deg.iter().find(|r| !r.is_finite()) {
             return out_of_range(
                 "forbiddenBearings",
-                format!("[{}, {}]", Shortest(r.from_deg), Shortest(r.to_deg)),
+                &format!("[{}, {}]", Shortest(r.from_deg), Shortest(r.to_deg)),
                 "pairs of finite compass bearings",
             );
         }
@@ -455,7 +458,7 @@ impl PlanOptions {
         {
             return out_of_range(
                 "headlandTolerance",
-                Shortest(self.headland_tolerance_deg).to_string(),
+                &Shortest(self.headland_tolerance_deg),
                 "at least 0 and less than 90 degrees",
             );
         }
@@ -466,23 +469,19 @@ impl PlanOptions {
         {
             return out_of_range(
                 "edgePasses",
-                format!("{} passes for edge {}", e.passes, e.edge),
+                &format!("{} passes for edge {}", e.passes, e.edge),
                 &format!("at most {MAX_HEADLAND_PASSES} passes"),
             );
         }
         if let Some(t) = self.obstacle_threshold {
             if !(t.is_finite() && t >= 0.0) {
-                return out_of_range(
-                    "obstacleThreshold",
-                    Shortest(t).to_string(),
-                    "0 or more metres",
-                );
+                return out_of_range("obstacleThreshold", &Shortest(t), "0 or more metres");
             }
         }
         if !(self.search_step_deg.is_finite() && (0.01..=90.0).contains(&self.search_step_deg)) {
             return out_of_range(
                 "searchStep",
-                Shortest(self.search_step_deg).to_string(),
+                &Shortest(self.search_step_deg),
                 "between 0.01 and 90 degrees",
             );
         }
@@ -493,7 +492,7 @@ impl PlanOptions {
             if !(v.is_finite() && (MIN_SPEED_KMH..=MAX_SPEED_KMH).contains(&v)) {
                 return out_of_range(
                     name,
-                    Shortest(v).to_string(),
+                    &Shortest(v),
                     &format!(
                         "between {} and {} km/h",
                         Shortest(MIN_SPEED_KMH),
@@ -506,7 +505,7 @@ impl PlanOptions {
             if line.iter().flatten().any(|v| !v.is_finite()) {
                 return out_of_range(
                     "referenceLine",
-                    format!("[{}, {}]", Position(line[0]), Position(line[1])),
+                    &format!("[{}, {}]", Position(line[0]), Position(line[1])),
                     "two points of finite coordinates",
                 );
             }
@@ -519,11 +518,7 @@ impl PlanOptions {
         }
         if let Some(o) = self.reference_offset {
             if !o.is_finite() {
-                return out_of_range(
-                    "referenceOffset",
-                    Shortest(o).to_string(),
-                    "a finite number of metres",
-                );
+                return out_of_range("referenceOffset", &Shortest(o), "a finite number of metres");
             }
         }
         let mode = self.direction_mode()?;
@@ -535,18 +530,14 @@ impl PlanOptions {
         }
         if let Some(m) = self.min_swath_length {
             if !(m.is_finite() && m >= 0.0) {
-                return out_of_range(
-                    "minSwathLength",
-                    Shortest(m).to_string(),
-                    "0 or more metres",
-                );
+                return out_of_range("minSwathLength", &Shortest(m), "0 or more metres");
             }
         }
         if let Some(c) = self.curvature_rate {
             if !(c.is_finite() && c > 0.0 && c <= MAX_CURVATURE_RATE) {
                 return out_of_range(
                     "curvatureRate",
-                    Shortest(c).to_string(),
+                    &Shortest(c),
                     &format!(
                         "more than 0 and at most {} per square metre",
                         Shortest(MAX_CURVATURE_RATE)
@@ -557,7 +548,7 @@ impl PlanOptions {
             if self.turn_radius > 0.0 && c < least {
                 return out_of_range(
                     "curvatureRate",
-                    Shortest(c).to_string(),
+                    &Shortest(c),
                     &format!(
                         "at least {} per square metre with a turning radius of {} m (a clothoid from straight to the tightest turn at most {} km long)",
                         Shortest(least),
@@ -572,7 +563,7 @@ impl PlanOptions {
         {
             return out_of_range(
                 "sampleSpacing",
-                Shortest(self.sample_spacing).to_string(),
+                &Shortest(self.sample_spacing),
                 &format!(
                     "between {} and {} metres",
                     Shortest(MIN_SAMPLE_SPACING_M),
@@ -583,21 +574,21 @@ impl PlanOptions {
         if !(1..=MAX_PATTERN_SWATHS).contains(&self.snake_skip) {
             return out_of_range(
                 "snakeSkip",
-                self.snake_skip.to_string(),
+                &self.snake_skip,
                 &format!("between 1 and {MAX_PATTERN_SWATHS}"),
             );
         }
         if !(2..=MAX_PATTERN_SWATHS).contains(&self.spiral_size) {
             return out_of_range(
                 "spiralSize",
-                self.spiral_size.to_string(),
+                &self.spiral_size,
                 &format!("between 2 and {MAX_PATTERN_SWATHS}"),
             );
         }
         if self.custom_order.len() > MAX_PATTERN_SWATHS as usize {
             return out_of_range(
                 "customOrder",
-                format!("{} positions long", self.custom_order.len()),
+                &format!("{} positions long", self.custom_order.len()),
                 &format!("at most {MAX_PATTERN_SWATHS} positions"),
             );
         }
