@@ -251,7 +251,7 @@ pub fn build(
         .unwrap_or(0);
 
     let mut passes = Vec::new();
-    for k in 1..=most + u32::from(settings.to_middle) {
+    for k in 1..=most.saturating_add(u32::from(settings.to_middle)) {
         let d = (k as f64 - 0.5) * w;
         let constraints = if uniform {
             Vec::new()
