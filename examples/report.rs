@@ -181,7 +181,7 @@ impl Row {
         Row {
             name: name.to_string(),
             width: o.width,
-            passes: o.headland_pass_count(),
+            passes: s.headland_passes,
             radius: o.turn_radius,
             field_area_ha: s.field_area_m2 / 1e4,
             decomposition: s.decomposition.method.as_str(),
