@@ -10,6 +10,7 @@ use criterion::{criterion_group, criterion_main, Criterion};
 use furrow::path::build_path;
 use furrow::path::sample::sample;
 use furrow::path::turn::Area;
+use furrow::route::headland_graph::HeadlandGraph;
 use std::hint::black_box;
 
 fn path_building(c: &mut Criterion) {
@@ -35,6 +36,8 @@ fn path_building(c: &mut Criterion) {
             let obstacles: Vec<&geo::Polygon> =
                 plan.field.obstacles.iter().map(|o| &o.polygon).collect();
             let area = Area::new(&plan.field.boundary, &obstacles);
+            let graph = HeadlandGraph::new(&plan.headlands.passes, options.width)
+                .with_crop(&plan.headlands.inner);
             group.bench_function(format!("{}/{machine}/build", field.name), |b| {
                 b.iter(|| {
                     build_path(
@@ -43,6 +46,7 @@ fn path_building(c: &mut Criterion) {
                         &plan.headlands.passes,
                         &vehicle,
                         Some(&area),
+                        Some(&graph),
                     )
                 })
             });

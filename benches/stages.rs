@@ -15,6 +15,7 @@ use furrow::field::Field;
 use furrow::path::build_path;
 use furrow::path::turn::Area;
 use furrow::plan::route_settings;
+use furrow::route::headland_graph::HeadlandGraph;
 use furrow::route::plan_route;
 use std::hint::black_box;
 
@@ -61,6 +62,8 @@ fn stages(c: &mut Criterion) {
         let obstacles: Vec<&geo::Polygon> =
             plan.field.obstacles.iter().map(|o| &o.polygon).collect();
         let vehicle = plan.options.vehicle();
+        let graph = HeadlandGraph::new(&plan.headlands.passes, plan.options.width)
+            .with_crop(&plan.headlands.inner);
         group.bench_function(&field.name, |b| {
             b.iter(|| {
                 // The driving area is built once per plan, as the planner does.
@@ -71,6 +74,7 @@ fn stages(c: &mut Criterion) {
                     &plan.headlands.passes,
                     &vehicle,
                     Some(&area),
+                    Some(&graph),
                 )
             })
         });

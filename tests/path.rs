@@ -367,32 +367,8 @@ fn connections_that_leave_the_field_are_flagged_and_warned_of() {
 /// lines a metre in from its strip's sides, all a metre in from its ends. Returns how many are
 /// flagged.
 fn check_connections_crossing(p: &Plan, what: &str) -> usize {
-    use geo::{Intersects, Line};
+    use geo::Intersects;
     let segments = &p.path.segments;
-    let side = p.options.width / 2.0 - 1.0;
-    // Each swath's lines, by its place in the path.
-    let later_swaths = |from: usize| -> Vec<Line> {
-        segments[from..]
-            .iter()
-            .filter(|s| s.kind == SegmentKind::Swath)
-            .filter_map(|s| match s.step.and_then(|k| p.route.steps.get(k)) {
-                Some(&furrow::route::RouteStep::Swath { swath, .. }) => p.swaths.swaths.get(swath),
-                _ => None,
-            })
-            .filter(|w| w.length() > 0.0)
-            .flat_map(|w| {
-                let d = (w.centre.end - w.centre.start) / w.length();
-                let cut = d * 1f64.min(w.length() / 4.0);
-                let (a, b) = (w.centre.start + cut, w.centre.end - cut);
-                let n = geo::coord! { x: -d.y, y: d.x } * side;
-                let mut lines = vec![Line::new(a, b)];
-                if side > 0.0 {
-                    lines.extend([Line::new(a + n, b + n), Line::new(a - n, b - n)]);
-                }
-                lines
-            })
-            .collect()
-    };
     let between = segments.len().saturating_sub(1);
     let mut flagged = 0;
     for (k, c) in segments.iter().enumerate() {
@@ -400,7 +376,7 @@ fn check_connections_crossing(p: &Plan, what: &str) -> usize {
             assert!(!c.crosses_crop, "{what}: segment {k} is flagged");
             continue;
         }
-        let crossing = later_swaths(k + 1).iter().any(|l| l.intersects(&c.line));
+        let crossing = later_crop(p, k + 1).iter().any(|l| l.intersects(&c.line));
         assert_eq!(
             c.crosses_crop, crossing,
             "{what}: connection {k} crosses a swath worked later: {crossing}"
@@ -417,6 +393,34 @@ fn check_connections_crossing(p: &Plan, what: &str) -> usize {
     flagged
 }
 
+/// The crop of the swaths the path works from its segment `from` on, by geo's lines: each
+/// swath's centre line and (on strips over 2 m wide) the lines a metre in from its strip's
+/// sides, all a metre in from its ends.
+fn later_crop(p: &Plan, from: usize) -> Vec<geo::Line> {
+    use geo::Line;
+    let side = p.options.width / 2.0 - 1.0;
+    p.path.segments[from..]
+        .iter()
+        .filter(|s| s.kind == SegmentKind::Swath)
+        .filter_map(|s| match s.step.and_then(|k| p.route.steps.get(k)) {
+            Some(&furrow::route::RouteStep::Swath { swath, .. }) => p.swaths.swaths.get(swath),
+            _ => None,
+        })
+        .filter(|w| w.length() > 0.0)
+        .flat_map(|w| {
+            let d = (w.centre.end - w.centre.start) / w.length();
+            let cut = d * 1f64.min(w.length() / 4.0);
+            let (a, b) = (w.centre.start + cut, w.centre.end - cut);
+            let n = geo::coord! { x: -d.y, y: d.x } * side;
+            let mut lines = vec![Line::new(a, b)];
+            if side > 0.0 {
+                lines.extend([Line::new(a + n, b + n), Line::new(a - n, b - n)]);
+            }
+            lines
+        })
+        .collect()
+}
+
 #[test]
 fn connections_over_crop_worked_later_are_flagged_and_warned_of() {
     let drill = drill();
@@ -430,6 +434,78 @@ fn connections_over_crop_worked_later_are_flagged_and_warned_of() {
         flagged += check_connections_crossing(&plan(&field.text(), &drill, &what), &what);
     }
     assert!(flagged > 0, "no connection of the drill crosses crop");
+}
+
+/// The longest run of `line` (points every half metre) over the crop of the swaths the path
+/// works from its segment `from` on: inside a swath's strip less a metre at its sides and ends.
+fn longest_over_crop(p: &Plan, from: usize, line: &geo::LineString) -> f64 {
+    use geo::{Densify, Euclidean};
+    let side = p.options.width / 2.0 - 1.0;
+    let strips: Vec<_> = p.path.segments[from..]
+        .iter()
+        .filter(|s| s.kind == SegmentKind::Swath)
+        .filter_map(|s| match s.step.and_then(|k| p.route.steps.get(k)) {
+            Some(&furrow::route::RouteStep::Swath { swath, .. }) => p.swaths.swaths.get(swath),
+            _ => None,
+        })
+        .filter(|w| w.length() > 2.0)
+        .map(|w| {
+            (
+                w.centre.start,
+                (w.centre.end - w.centre.start) / w.length(),
+                w.length(),
+            )
+        })
+        .collect();
+    let over = |q: geo::Coord| {
+        strips.iter().any(|&(a, d, length)| {
+            let along = (q.x - a.x) * d.x + (q.y - a.y) * d.y;
+            let across = (-(q.x - a.x) * d.y + (q.y - a.y) * d.x).abs();
+            along > 1.0 && along < length - 1.0 && across < side
+        })
+    };
+    let (mut longest, mut run, mut last): (f64, f64, Option<geo::Coord>) = (0.0, 0.0, None);
+    for q in Euclidean.densify(line, 0.5).0 {
+        let step = last.map_or(0.0, |l| ((q.x - l.x).powi(2) + (q.y - l.y).powi(2)).sqrt());
+        run = if over(q) { run + step } else { 0.0 };
+        longest = longest.max(run);
+        last = Some(q);
+    }
+    longest
+}
+
+/// A register parcel whose long edge runs nearly along its swaths, with neighbouring lines in
+/// other blocks: a turn between two swaths of a block whose ends lie hundreds of metres apart
+/// drove back past the ends of the lines between, over some 340 to 400 m of their crop (the
+/// forward drill's 428 m "u-turn"). It is driven along the headland instead, crossing at most
+/// the crop its joins onto and off the headland cannot avoid.
+#[test]
+fn turns_between_far_staggered_ends_keep_to_the_headland() {
+    let text = common::corpus::real_parcels()
+        .into_iter()
+        .find(|(file, i, _)| file == "dk_marker_2026_sample" && *i == 53)
+        .map(|(_, _, text)| text)
+        .expect("parcel 53");
+    for (machine, options) in machines(&drill()).into_iter().take(2) {
+        let what = format!("dk_marker_2026_sample 53 ({machine})");
+        let p = plan(&text, &options, &what);
+        let segments = &p.path.segments;
+        let mut worst = (0.0, 0);
+        for (k, s) in segments.iter().enumerate() {
+            if s.kind == SegmentKind::Turn && s.step.is_none() {
+                let over = longest_over_crop(&p, k + 1, &s.line);
+                if over > worst.0 {
+                    worst = (over, k);
+                }
+            }
+        }
+        assert!(
+            worst.0 < 60.0,
+            "{what}: turn {} over {:.0} m of crop",
+            worst.1,
+            worst.0
+        );
+    }
 }
 
 #[test]

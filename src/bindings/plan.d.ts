@@ -320,7 +320,7 @@ export interface PlanFeatureProperties {
   /** Drivable features: whether the implement works along it. */
   working?: boolean;
   /** A turn's form. */
-  form?: "u-turn" | "loop" | "three-point" | "reeds-shepp" | "cc-u-turn" | "cc-loop" | "on-the-spot" | "lifted" | "none";
+  form?: "u-turn" | "loop" | "three-point" | "reeds-shepp" | "cc-u-turn" | "cc-loop" | "on-the-spot" | "lifted" | "headland" | "none";
   /** A turn's word, e.g. `"LSL"` or `"L+R-L+"`. */
   word?: string;
   /** Turns and connections: `false` where it leaves the field or crosses an obstacle (see the `turn_leaves_field` and `connection_leaves_field` warnings). */

@@ -98,4 +98,15 @@ impl StandingCrop {
             .iter()
             .any(|s| !self.lines.crosses_none_from(std::slice::from_ref(s), step))
     }
+
+    /// The length of the pieces of a run of segments driven before route step `step` that
+    /// cross crop that step or a later one works, metres: how much of the run lies over crop,
+    /// to the piece.
+    pub fn crossed_length(&self, segments: &[Segment], step: usize) -> f64 {
+        segments
+            .iter()
+            .filter(|s| !self.lines.crosses_none_from(std::slice::from_ref(*s), step))
+            .map(|s| s.length)
+            .sum()
+    }
 }

@@ -35,6 +35,7 @@ use crate::geometry::intervals::Intervals;
 use crate::geometry::point_segment_distance;
 use crate::geometry::{Extremes, PlanarHypot};
 use crate::headland::HeadlandPass;
+use crate::route::headland_graph::HeadlandGraph;
 use crate::route::{nearest_on_ring, Route, RouteStep};
 use crate::swath::Swaths;
 use crop::StandingCrop;
@@ -225,7 +226,10 @@ const MIN_CONNECTOR_M: f64 = 1e-6;
 const DIRECT_CONNECTION_RADII: f64 = 6.0;
 
 /// Builds the drivable path of a route (see the module documentation). `area` is where turns
-/// must stay (the field less its obstacles); without it turns are not checked.
+/// must stay (the field less its obstacles); without it turns are not checked. `graph`, the
+/// ways along the route's headland passes: a turn between swath ends far apart along the swaths
+/// that crosses crop worked later is driven along it instead where that crosses less (form
+/// `headland`); without it every turn is one form of turn.
 ///
 /// ```
 /// use furrow::{decompose::cluster_swaths, path::{build_path, SegmentKind, turn::Vehicle}};
@@ -236,7 +240,7 @@ const DIRECT_CONNECTION_RADII: f64 = 6.0;
 /// let swaths = generate(&MultiPolygon::new(vec![field]), 0.0, 6.0, 6.0)?;
 /// let route = plan_route(&swaths, &cluster_swaths(&swaths), &[], &RouteSettings::default());
 /// let vehicle = Vehicle { width: 6.0, turn_radius: 3.0, ..Vehicle::default() };
-/// let path = build_path(&route, &swaths, &[], &vehicle, None);
+/// let path = build_path(&route, &swaths, &[], &vehicle, None, None);
 /// let turns: Vec<_> = path.segments.iter().filter(|s| s.kind == SegmentKind::Turn).collect();
 /// assert_eq!(turns.len(), 4); // five swaths, four turns between them
 /// // Swaths 6 m apart, a 3 m radius: each turn is a U of two quarter circles, πr long.
@@ -249,6 +253,7 @@ pub fn build_path(
     passes: &[HeadlandPass],
     vehicle: &Vehicle,
     area: Option<&Area>,
+    graph: Option<&HeadlandGraph>,
 ) -> Path {
     // The worked segments first (a headland pass with manoeuvres is several, with the turns
     // between), each step with the connection the route found into it.
@@ -329,6 +334,8 @@ pub fn build_path(
     let standing = std::cell::OnceCell::new();
     let mut segments: Vec<PathSegment> = Vec::with_capacity(worked.len() * 2 + 2);
     let mut previous: Option<(Pose, Option<usize>)> = None;
+    // Turns that cross crop worked later: (segment, from, to, route step).
+    let mut crossing_turns: Vec<(usize, Pose, Pose, usize)> = Vec::new();
     for mut w in worked {
         let Some(start) = w.segments.first().and_then(PathSegment::start) else {
             continue;
@@ -350,7 +357,18 @@ pub fn build_path(
                     // turns through crop), for 3 % more planning time: the crop is minded
                     // where the machine reverses (602 to 328).
                     let minded = if vehicle.reverse { crop() } else { None };
-                    if let Some(t) = swath_turn(from, start, vehicle, area, minded) {
+                    if let Some((t, crossing)) = swath_turn(from, start, vehicle, area, minded) {
+                        // A turn between ends far staggered may run past the ends of the
+                        // swaths between, over their crop (checked here for these alone).
+                        if graph.is_some() && staggered(from, start, vehicle) {
+                            let inside = t.turn.as_ref().is_some_and(|r| r.inside);
+                            let crosses = crossing
+                                || (inside && !vehicle.reverse)
+                                    && crop().is_some_and(|(c, k)| c.crossed(&t.pieces, k));
+                            if crosses {
+                                crossing_turns.push((segments.len(), from, start, w.step));
+                            }
+                        }
                         segments.push(t);
                     }
                 } else if let Some(c) = connection(
@@ -400,6 +418,9 @@ pub fn build_path(
         if let Some(f) = to_exit {
             segments.push(f);
         }
+    }
+    if let (Some(g), Some(standing)) = (graph, standing.get()) {
+        turns_along_headland(&mut segments, &crossing_turns, g, vehicle, area, standing);
     }
     lift::lift_where_needed(&mut segments, route, swaths, vehicle.width / 2.0, area);
     Path { segments }
@@ -507,27 +528,86 @@ fn turn_segment(from: Pose, pieces: Vec<Segment>, form: TurnForm, inside: bool) 
 }
 
 /// The turn between two swath ends of a block: the cheapest form that keeps in the field and
-/// off `crop` (the crop standing before that route step), else the cheapest in the field.
+/// off `crop` (the crop standing before that route step), else the cheapest in the field; with
+/// whether it stays in the field but crosses that crop.
 fn swath_turn(
     from: Pose,
     to: Pose,
     v: &Vehicle,
     area: Option<&Area>,
     crop: Option<(&StandingCrop, usize)>,
-) -> Option<PathSegment> {
+) -> Option<(PathSegment, bool)> {
     if from.distance(&to) < MIN_CONNECTOR_M && from.heading_change(&to).abs() < 1e-9 {
         return None;
     }
-    let t = match (area, crop) {
-        (Some(a), Some((crop, step))) => v.turn_clear(from, to, a, &|s| !crop.crossed(s, step)).0,
-        (Some(a), None) => v.turn(from, to, a),
+    let (t, crossing) = match (area, crop) {
+        (Some(a), Some((crop, step))) => {
+            let (t, clear) = v.turn_clear(from, to, a, &|s| !crop.crossed(s, step));
+            let crossing = t.inside && !clear;
+            (t, crossing)
+        }
+        (Some(a), None) => (v.turn(from, to, a), false),
         (None, _) => {
             let mut t = v.shortest(from, to);
             t.inside = true;
-            t
+            (t, false)
         }
     };
-    Some(turn_segment(from, t.segments, t.form, t.inside))
+    Some((turn_segment(from, t.segments, t.form, t.inside), crossing))
+}
+
+/// Whether the ends of a turn from `from` to `to` lie more than [`STAGGER_RADII`] turning radii
+/// apart along the swath it leaves.
+fn staggered(from: Pose, to: Pose, v: &Vehicle) -> bool {
+    let (s, c) = from.heading.sin_cos();
+    ((to.x - from.x) * c + (to.y - from.y) * s).abs() > STAGGER_RADII * v.turn_radius
+}
+
+/// The stagger between the ends of a turn between swaths, in turning radii, beyond which the
+/// turn's crop is checked and the way along the headland tried where it crosses some.
+const STAGGER_RADII: f64 = 6.0;
+
+/// The turns between swath ends at `crossing` (their segment, end poses and route step) that
+/// cross crop worked later, each driven instead along the headland graph's way between its
+/// ends where that way keeps in the field and crosses less of the crop (one search of the
+/// graph for all).
+fn turns_along_headland(
+    segments: &mut [PathSegment],
+    crossing: &[(usize, Pose, Pose, usize)],
+    graph: &HeadlandGraph,
+    v: &Vehicle,
+    area: Option<&Area>,
+    standing: &StandingCrop,
+) {
+    if crossing.is_empty() {
+        return;
+    }
+    let ends: Vec<Coord> = crossing
+        .iter()
+        .flat_map(|&(_, a, b, _)| [Coord { x: a.x, y: a.y }, Coord { x: b.x, y: b.y }])
+        .collect();
+    let joined = graph.connect(&ends);
+    for (i, &(at, from, to, step)) in crossing.iter().enumerate() {
+        let Some(line) = joined.line(2 * i, 2 * i + 1) else {
+            continue;
+        };
+        let crop = Some((standing, step));
+        let Some(c) = connection_minding(Some(from), Some(to), Some(&line), v, area, crop) else {
+            continue;
+        };
+        // Kept where it crosses less crop than the turn (at most its joins, where no form
+        // keeps off it, against a turn driven past the ends of the swaths between).
+        let Some(turn) = segments.get(at) else {
+            continue;
+        };
+        if c.leaves_field
+            || standing.crossed_length(&c.pieces, step)
+                >= standing.crossed_length(&turn.pieces, step)
+        {
+            continue;
+        }
+        segments[at] = turn_segment(from, c.pieces, TurnForm::Headland, true);
+    }
 }
 
 /// A connection from `from` (or the line's first point) to `to` (or its last point) along
@@ -841,15 +921,32 @@ mod tests {
         // A U-turn to the left, 20 m across: the cheapest (LSL) runs north along x = 5, over
         // the crop.
         let (from, to) = (Pose::new(0.0, 0.0, 0.0), Pose::new(0.0, 20.0, PI));
-        let cheapest = swath_turn(from, to, &v, Some(&area), None).unwrap();
+        let cheapest = swath_turn(from, to, &v, Some(&area), None).unwrap().0;
         assert!(crop.crossed(&cheapest.pieces, 0));
         // Before the swath is worked the turn goes round the other way, still in the field; after
         // it, the cheapest again.
-        let minded = swath_turn(from, to, &v, Some(&area), Some((&crop, 0))).unwrap();
+        let minded = swath_turn(from, to, &v, Some(&area), Some((&crop, 0)))
+            .unwrap()
+            .0;
         assert!(minded.turn.as_ref().is_some_and(|t| t.inside));
         assert!(!crop.crossed(&minded.pieces, 0));
         assert!(minded.length() > cheapest.length());
-        let after = swath_turn(from, to, &v, Some(&area), Some((&crop, 1))).unwrap();
+        // The pieces over the crop: the LSL's straight (the arcs at its ends do not reach it).
+        let over = crop.crossed_length(&cheapest.pieces, 0);
+        let straight: f64 = cheapest
+            .pieces
+            .iter()
+            .filter(|p| p.curvature == 0.0)
+            .map(|p| p.length)
+            .sum();
+        assert!(
+            over > 0.0 && (over - straight).abs() < 1e-9,
+            "{over} of {straight}"
+        );
+        assert_eq!(crop.crossed_length(&minded.pieces, 0), 0.0);
+        let after = swath_turn(from, to, &v, Some(&area), Some((&crop, 1)))
+            .unwrap()
+            .0;
         assert_eq!(after.pieces, cheapest.pieces);
     }
 
@@ -892,7 +989,7 @@ mod tests {
             &passes,
             &RouteSettings::default(),
         );
-        let path = build_path(&route, &swaths, &passes, &Vehicle::default(), None);
+        let path = build_path(&route, &swaths, &passes, &Vehicle::default(), None, None);
         for w in path.segments.windows(2) {
             let a = *w[0].line.0.last().unwrap();
             let b = w[1].line.0[0];

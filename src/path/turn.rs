@@ -96,6 +96,10 @@ pub enum TurnForm {
     OnTheSpot,
     /// Nothing to turn: the poses meet.
     None,
+    /// From one swath to the next along the headland (onto a headland pass, along it and off
+    /// it), where their ends lie so far apart along the swaths that a turn would cross the
+    /// crop of the swaths between.
+    Headland,
     /// A bend of a headland pass driven with the implement lifted: working on, it would reach
     /// out of the field (a rounding over a concave corner tighter than the turning radius).
     Lifted,
@@ -115,6 +119,7 @@ impl TurnForm {
             TurnForm::OnTheSpot => "on-the-spot",
             TurnForm::None => "none",
             TurnForm::Lifted => "lifted",
+            TurnForm::Headland => "headland",
         }
     }
 
@@ -123,9 +128,11 @@ impl TurnForm {
         match self {
             TurnForm::Dubins(w) | TurnForm::ContinuousCurvature(w) => (*w).to_string(),
             TurnForm::ReedsShepp(w) => w.clone(),
-            TurnForm::ThreePoint | TurnForm::OnTheSpot | TurnForm::None | TurnForm::Lifted => {
-                String::new()
-            }
+            TurnForm::ThreePoint
+            | TurnForm::OnTheSpot
+            | TurnForm::None
+            | TurnForm::Lifted
+            | TurnForm::Headland => String::new(),
         }
     }
 }

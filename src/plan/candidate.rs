@@ -282,6 +282,7 @@ fn route_and_path(
             &laid.headlands.passes,
             &prep.options.vehicle(),
             Some(&prep.area),
+            (laid.headlands.passes.len() == prep.headlands.passes.len()).then_some(&prep.graph),
         )
     });
     let Some(path) = built.as_ref().or(earlier.map(|&(_, path)| path)) else {
