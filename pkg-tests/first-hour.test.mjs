@@ -157,7 +157,10 @@ test("first hour: a new field tapped clockwise plans without an orientation warn
     await planned(page);
     const first = await shownWarnings(page);
     assert.ok(!first.plan.includes("ring_reoriented"), `no orientation warning: ${first.plan}`);
-    assert.deepEqual(first.plan, ["field_at_sea"], "the one warning, to be cleared by undo");
+    // The field's warning (the route's own, such as turns over crop in a square this small
+    // with two passes, aside).
+    const fieldWarnings = first.plan.filter((c) => c !== "turn_crosses_crop");
+    assert.deepEqual(fieldWarnings, ["field_at_sea"], "the one warning, to be cleared by undo");
     assert.ok(first.badges > 0 && first.list.length > 0);
     assert.equal((await dataset(page)).editMode, "edit");
 
@@ -319,7 +322,7 @@ test("first hour: a 1.2 M-vertex file is refused within 3 s without holding up t
       // A good file after them plans, with nothing of their errors left.
       await open(join(FIELDS, "rectangle.geojson"));
       await ready(page);
-      assert.deepEqual(await errorList(), []);
+      assert.deepEqual((await errorList()).filter(([, kind]) => kind === "error"), []);
       assert.ok(await page.isHidden("#map-message"));
     });
   } finally {

@@ -4,7 +4,8 @@ planner's own figure: from the CLI's GeoJSON output with shapely, the footprint 
 feature (a strip of the width along it, flat ends, lifted stretches left out) against the parcel,
 in a transverse Mercator projection about the parcel (pyproj). Four machines, as in the table of
 docs/performance.md. The last two columns count plans with a connection (of them those with no
-connection_crosses_crop warning) and plans with a turn between swaths that drives through at
+connection_crosses_crop warning) and plans with a turn between swaths (of them without the
+turn_crosses_crop warning) that drives through at
 least 1 m of crop the plan works later (not on the headland, not on a strip already worked: see
 crop_crossed); the column before them counts plans whose route (a turn or a connection) runs
 more than 1 m out of the field, and of them those with no warning naming it. Needs `pip install
@@ -171,10 +172,11 @@ for m in MACHINES:
     crossing = sum(1 for r in ok if r['through_crop'] >= 1.0)
     crossing_unwarned = sum(1 for r in ok if r['through_crop'] >= 1.0 and 'connection_crosses_crop' not in r['warnings'])
     turns_crossing = sum(1 for r in ok if r['turns_through_crop'] >= 1.0)
+    turns_unwarned = sum(1 for r in ok if r['turns_through_crop'] >= 1.0 and 'turn_crosses_crop' not in r['warnings'])
     route_out = sum(1 for r in ok if max(r['turn_out_m'], r['connection_out_m']) > 1.0)
     unwarned = sum(1 for r in ok if unwarned_outside(r))
-    table.append(f"| {name} | {len(refused)} ({len(refused_reach)}) | {100*cov:.1f} % | {100*reach:.2f} % | {100*cov/reach:.1f} % | {100*ge97:.0f} % | {100*lt90:.0f} % | {100*ov:.1f} % | {outside} | {tout} of {len(ok)} | {route_out} ({unwarned}) | {crossing} ({crossing_unwarned}) | {turns_crossing} |")
-print('| machine | refused (of them reachable >= 50 %) | coverage, area-weighted | reachable (limit) | coverage of reachable | parcels >= 97 % of their reachable | parcels < 90 % covered | overlap | plans working > 1 m² outside | plans with turns outside | plans with a turn or connection > 1 m outside (of them not warned of) | plans with a connection through >= 1 m of crop worked later (of them not warned of) | plans with a turn through >= 1 m of crop worked later |')
+    table.append(f"| {name} | {len(refused)} ({len(refused_reach)}) | {100*cov:.1f} % | {100*reach:.2f} % | {100*cov/reach:.1f} % | {100*ge97:.0f} % | {100*lt90:.0f} % | {100*ov:.1f} % | {outside} | {tout} of {len(ok)} | {route_out} ({unwarned}) | {crossing} ({crossing_unwarned}) | {turns_crossing} ({turns_unwarned}) |")
+print('| machine | refused (of them reachable >= 50 %) | coverage, area-weighted | reachable (limit) | coverage of reachable | parcels >= 97 % of their reachable | parcels < 90 % covered | overlap | plans working > 1 m² outside | plans with turns outside | plans with a turn or connection > 1 m outside (of them not warned of) | plans with a connection through >= 1 m of crop worked later (of them not warned of) | plans with a turn through >= 1 m of crop worked later (of them not warned of) |')
 print('|---|---|---|---|---|---|---|---|---|---|---|---|---|')
 print('\n'.join(table))
 print()

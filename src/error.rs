@@ -291,6 +291,9 @@ pub enum WarningCode {
     /// Some connections between blocks drive over crop the plan works later: no turn the
     /// machine can drive from one block into the next keeps to the headland there.
     ConnectionCrossesCrop,
+    /// Some turns between swaths drive over crop the plan works later: no form of turn the
+    /// machine can drive between them keeps off it within the field.
+    TurnCrossesCrop,
     /// The field has too many swaths at this width to search every direction while the user
     /// waits: the swaths run along the longest edge.
     DirectionNotSearched,
@@ -326,6 +329,7 @@ impl WarningCode {
         WarningCode::TurnLeavesField,
         WarningCode::ConnectionLeavesField,
         WarningCode::ConnectionCrossesCrop,
+        WarningCode::TurnCrossesCrop,
         WarningCode::OutputCoarsened,
         WarningCode::HeadlandPassesReduced,
     ];
@@ -354,6 +358,7 @@ impl WarningCode {
             WarningCode::TurnLeavesField => "turn_leaves_field",
             WarningCode::ConnectionLeavesField => "connection_leaves_field",
             WarningCode::ConnectionCrossesCrop => "connection_crosses_crop",
+            WarningCode::TurnCrossesCrop => "turn_crosses_crop",
             WarningCode::OutputCoarsened => "output_coarsened",
             WarningCode::HeadlandPassesReduced => "headland_passes_reduced",
         }

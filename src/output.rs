@@ -164,8 +164,9 @@ pub struct Properties {
     /// warnings); `true` on the others.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub inside: Option<bool>,
-    /// `true` on a connection between blocks that drives over crop the plan works later (see
-    /// the `connection_crosses_crop` warning); absent on the others.
+    /// `true` on a connection between blocks or a turn between swaths that drives over crop
+    /// the plan works later (see the `connection_crosses_crop` and `turn_crosses_crop`
+    /// warnings); absent on the others.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub crosses_crop: Option<bool>,
     /// The heading at each point of a drivable feature's line, compass degrees.
@@ -302,6 +303,7 @@ impl Plan {
                 let word = t.form.word();
                 p.word = (!word.is_empty()).then_some(word);
                 p.inside = Some(t.inside);
+                p.crosses_crop = seg.crosses_crop.then_some(true);
             }
             if seg.kind == SegmentKind::Connection {
                 p.inside = Some(!seg.leaves_field);

@@ -329,7 +329,10 @@ fn plan_with_passes(
     let (chosen, decomposition) =
         auto::choose(candidates, options.decomposition, &methods, left_out);
     times.lap(&mut clock, |t| &mut t.metrics);
-    let (chosen, coverage) = candidate::fill_leftovers(&prepared, chosen, &mut times)?;
+    let (mut chosen, coverage) = candidate::fill_leftovers(&prepared, chosen, &mut times)?;
+    let mut clock = Instant::now();
+    candidate::turns_over_crop(options, &mut chosen);
+    times.lap(&mut clock, |t| &mut t.path);
     let mut plan = assemble(field, options, obstacles, chosen, decomposition, warnings);
     plan.summary.coverage = coverage;
     plan.summary.stages_ms = times;

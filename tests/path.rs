@@ -361,27 +361,37 @@ fn connections_that_leave_the_field_are_flagged_and_warned_of() {
     assert!(flagged > 0, "no connection of the drill leaves the field");
 }
 
-/// Every connection between worked stretches that crosses crop of a swath the path works after
-/// it is flagged (`crosses_crop`) and warned of with its cause; a flagged one does cross some.
-/// The crop, by geo's predicates: the swath's centre line and (on strips over 2 m wide) the
-/// lines a metre in from its strip's sides, all a metre in from its ends. Returns how many are
-/// flagged.
-fn check_connections_crossing(p: &Plan, what: &str) -> usize {
+/// Every connection between worked stretches, and every turn between swaths that keeps in the
+/// field, that crosses crop of a swath the path works after it is flagged (`crosses_crop`) and
+/// warned of with its cause; a flagged one does cross some. The crop: [`later_crop`]. Returns
+/// how many connections and turns are flagged.
+fn check_connections_crossing(p: &Plan, what: &str) -> (usize, usize) {
     use geo::Intersects;
     let segments = &p.path.segments;
     let between = segments.len().saturating_sub(1);
-    let mut flagged = 0;
+    let (mut flagged, mut turns) = (0, 0);
     for (k, c) in segments.iter().enumerate() {
-        if c.kind != SegmentKind::Connection || k == 0 || k >= between {
+        let next_swath = segments[k + 1..]
+            .iter()
+            .find(|s| s.step.is_some())
+            .is_some_and(|s| s.kind == SegmentKind::Swath);
+        let turn_between = c.kind == SegmentKind::Turn
+            && c.step.is_none()
+            && c.turn.as_ref().is_some_and(|t| t.inside)
+            && next_swath;
+        let connection = c.kind == SegmentKind::Connection && k > 0 && k < between;
+        if !connection && !turn_between {
             assert!(!c.crosses_crop, "{what}: segment {k} is flagged");
             continue;
         }
         let crossing = later_crop(p, k + 1).iter().any(|l| l.intersects(&c.line));
         assert_eq!(
             c.crosses_crop, crossing,
-            "{what}: connection {k} crosses a swath worked later: {crossing}"
+            "{what}: {:?} {k} crosses a swath worked later: {crossing}",
+            c.kind
         );
-        flagged += usize::from(c.crosses_crop);
+        flagged += usize::from(connection && c.crosses_crop);
+        turns += usize::from(turn_between && c.crosses_crop);
     }
     check_warned(
         p,
@@ -390,7 +400,8 @@ fn check_connections_crossing(p: &Plan, what: &str) -> usize {
         "turning radius",
         what,
     );
-    flagged
+    check_warned(p, WarningCode::TurnCrossesCrop, turns, "headland", what);
+    (flagged, turns)
 }
 
 /// The crop of the swaths the path works from its segment `from` on, by geo's lines: each
@@ -422,18 +433,21 @@ fn later_crop(p: &Plan, from: usize) -> Vec<geo::Line> {
 }
 
 #[test]
-fn connections_over_crop_worked_later_are_flagged_and_warned_of() {
+fn connections_and_turns_over_crop_worked_later_are_flagged_and_warned_of() {
     let drill = drill();
-    let mut flagged = 0;
+    let (mut flagged, mut turns) = (0, 0);
     for field in valid_fields() {
         for (machine, options) in machines(&field.options) {
             let what = format!("{} ({machine})", field.name);
             check_connections_crossing(&plan(&field.text(), &options, &what), &what);
         }
         let what = format!("{} (drill)", field.name);
-        flagged += check_connections_crossing(&plan(&field.text(), &drill, &what), &what);
+        let (c, t) = check_connections_crossing(&plan(&field.text(), &drill, &what), &what);
+        flagged += c;
+        turns += t;
     }
     assert!(flagged > 0, "no connection of the drill crosses crop");
+    assert!(turns > 0, "no turn of the drill crosses crop");
 }
 
 /// The longest run of `line` (points every half metre) over the crop of the swaths the path

@@ -325,7 +325,7 @@ export interface PlanFeatureProperties {
   word?: string;
   /** Turns and connections: `false` where it leaves the field or crosses an obstacle (see the `turn_leaves_field` and `connection_leaves_field` warnings). */
   inside?: boolean;
-  /** Connections: `true` where it drives over crop the plan works later (see the `connection_crosses_crop` warning); absent elsewhere. */
+  /** Connections and turns between swaths: `true` where it drives over crop the plan works later (see the `connection_crosses_crop` and `turn_crosses_crop` warnings); absent elsewhere. */
   crosses_crop?: boolean;
   /** Drivable features: the heading at each point of the line, compass degrees. */
   heading_deg?: number[];
@@ -586,6 +586,7 @@ export type WarningCode =
   | "turn_leaves_field"
   | "connection_leaves_field"
   | "connection_crosses_crop"
+  | "turn_crosses_crop"
   | "output_coarsened"
   | "headland_passes_reduced";
 

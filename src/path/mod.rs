@@ -111,7 +111,7 @@ pub struct PathSegment {
     pub leaves_field: bool,
     /// For a connection between two worked stretches: whether it drives over crop the route
     /// works later ([`crop`]: no turn the machine can drive onto, off or along the headland
-    /// keeps off it).
+    /// keeps off it); for a turn between swaths, whether it does, keeping in the field.
     pub crosses_crop: bool,
     /// For a worked segment: the stretches driven with the implement lifted, metres along its
     /// line from its first point, sorted and disjoint ([`lift`]: over small obstacles, and
@@ -355,17 +355,20 @@ pub fn build_path(
                     // Forward only, the forms of turn that keep in the field seldom have one
                     // that keeps off the crop too (on the drill's register parcels, 6 of 653
                     // turns through crop), for 3 % more planning time: the crop is minded
-                    // where the machine reverses (602 to 328).
+                    // where the machine reverses (602 to 328); forward turns are flagged
+                    // once the plan is chosen ([`flag_turns_over_crop`]).
                     let minded = if vehicle.reverse { crop() } else { None };
-                    if let Some((t, crossing)) = swath_turn(from, start, vehicle, area, minded) {
+                    if let Some((mut t, crossing)) = swath_turn(from, start, vehicle, area, minded)
+                    {
+                        t.crosses_crop = crossing;
                         // A turn between ends far staggered may run past the ends of the
                         // swaths between, over their crop (checked here for these alone).
                         if graph.is_some() && staggered(from, start, vehicle) {
                             let inside = t.turn.as_ref().is_some_and(|r| r.inside);
-                            let crosses = crossing
-                                || (inside && !vehicle.reverse)
-                                    && crop().is_some_and(|(c, k)| c.crossed(&t.pieces, k));
-                            if crosses {
+                            t.crosses_crop |= inside
+                                && !vehicle.reverse
+                                && crop().is_some_and(|(c, k)| c.crossed(&t.pieces, k));
+                            if t.crosses_crop {
                                 crossing_turns.push((segments.len(), from, start, w.step));
                             }
                         }
@@ -424,6 +427,38 @@ pub fn build_path(
     }
     lift::lift_where_needed(&mut segments, route, swaths, vehicle.width / 2.0, area);
     Path { segments }
+}
+
+/// Flags (`crosses_crop`) each turn between swaths of `path` that crosses crop `route` works
+/// later and stays in the field (`build_path` flags those of a machine that reverses as it
+/// makes them, and forward only those between ends far staggered): done once for the plan
+/// chosen rather than for every candidate. Gives how many turns are flagged.
+pub fn flag_turns_over_crop(path: &mut Path, route: &Route, swaths: &Swaths) -> usize {
+    let mut standing: Option<StandingCrop> = None;
+    // The route step of the next worked segment, walking back from the end.
+    let mut next_step: Option<usize> = None;
+    let mut flagged = 0;
+    for seg in path.segments.iter_mut().rev() {
+        if seg.step.is_some() {
+            next_step = seg.step;
+            continue;
+        }
+        let inside = seg.turn.as_ref().is_some_and(|t| t.inside);
+        let between = seg.kind == SegmentKind::Turn
+            && inside
+            && matches!(
+                next_step.and_then(|k| route.steps.get(k)),
+                Some(RouteStep::Swath { .. })
+            );
+        if between && !seg.crosses_crop {
+            if let Some(k) = next_step {
+                let crop = standing.get_or_insert_with(|| StandingCrop::of_route(route, swaths));
+                seg.crosses_crop = crop.crossed(&seg.pieces, k);
+            }
+        }
+        flagged += usize::from(seg.kind == SegmentKind::Turn && seg.crosses_crop);
+    }
+    flagged
 }
 
 /// A route step's worked segments, as `build_path` lays them before the connections.
@@ -606,7 +641,9 @@ fn turns_along_headland(
         {
             continue;
         }
+        let crosses_crop = standing.crossed(&c.pieces, step);
         segments[at] = turn_segment(from, c.pieces, TurnForm::Headland, true);
+        segments[at].crosses_crop = crosses_crop;
     }
 }
 

@@ -21,6 +21,7 @@ use crate::numbers::{Decimals, Shortest};
 use crate::objective::{measure_all, Machine, ObjectiveValues};
 use crate::obstacles::ObstacleClass;
 use crate::options::PlanOptions;
+use crate::path::SegmentKind;
 use crate::path::{build_path, Path};
 use crate::prohibited::{forbidding, split};
 use crate::route::headland_graph::HeadlandGraph;
@@ -295,7 +296,7 @@ fn route_and_path(
     warnings.extend(turns_leaving(path, prep.options));
     warnings.extend(lifted_at_edges(path, prep));
     warnings.extend(connections_leaving(path, prep.options));
-    warnings.extend(connections_crossing(path, prep.options));
+    warnings.extend(crop_crossed(path, prep.options, SegmentKind::Connection));
     let summary = measure(prep, laid, blocks, &route, path, prep.options.machine());
     times.lap(&mut clock, |t| &mut t.metrics);
     Ok((route, built, summary))
@@ -625,35 +626,77 @@ fn connections_leaving(path: &Path, options: &PlanOptions) -> Option<Warning> {
     ))
 }
 
-/// The warning for the connections between blocks that drive over crop the plan works later,
-/// with their cause.
-fn connections_crossing(path: &Path, options: &PlanOptions) -> Option<Warning> {
-    let crossing = path.segments.iter().filter(|s| s.crosses_crop).count();
+/// The warning for the connections between blocks (`kind` connection) or the turns between
+/// swaths (`kind` turn) that drive over crop the plan works later, with their cause: the
+/// headland's depth for the machine's turns (and, for a forward machine's turns, the loop
+/// between neighbouring swaths).
+fn crop_crossed(path: &Path, options: &PlanOptions, kind: SegmentKind) -> Option<Warning> {
+    let crossing = path
+        .segments
+        .iter()
+        .filter(|s| s.crosses_crop && s.kind == kind)
+        .count();
     if crossing == 0 {
         return None;
     }
-    let what = if crossing == 1 {
-        "1 connection between blocks drives".to_string()
+    let turns = kind == SegmentKind::Turn;
+    let (code, one, between) = if turns {
+        (WarningCode::TurnCrossesCrop, "turn", "swaths")
     } else {
-        format!("{crossing} connections between blocks drive")
+        (WarningCode::ConnectionCrossesCrop, "connection", "blocks")
     };
-    let hint = reversing_hint(options);
-    Some(Warning::new(
-        WarningCode::ConnectionCrossesCrop,
+    let what = match crossing {
+        1 => format!("1 {one} between {between} drives"),
+        n => format!("{n} {one}s between {between} drive"),
+    };
+    let cause = if turns && !options.reverse {
         format!(
-            "{what} over crop the plan works later (crosses_crop on the connection): no turn the machine can drive from one block into the next keeps to a headland {} m deep with a turning radius of {} m{hint}",
+            " (a loop between neighbouring swaths reaches {} m beyond their ends)",
+            Decimals(loop_depth(options.width, options.turn_radius), 1)
+        )
+    } else {
+        String::new()
+    };
+    Some(Warning::new(
+        code,
+        format!(
+            "{what} over crop the plan works later (crosses_crop on the {one}): no turn the machine can drive there keeps to a headland {} m deep with a turning radius of {} m{cause}{}",
             Decimals(options.headland_pass_count() as f64 * options.width, 1),
-            Shortest(options.turn_radius)
+            Shortest(options.turn_radius),
+            reversing_hint(options)
         ),
     ))
 }
 
-/// What the connections' warnings suggest to a machine that only drives forward.
+/// Flags the turns between swaths of the plan chosen that drive over crop it works later (a
+/// machine that reverses has them flagged as they are made) and warns of them.
+pub(super) fn turns_over_crop(options: &PlanOptions, worked: &mut Worked) {
+    if !options.reverse {
+        crate::path::flag_turns_over_crop(&mut worked.path, &worked.route, &worked.swaths);
+    }
+    let warning = crop_crossed(&worked.path, options, SegmentKind::Turn);
+    worked.warnings.extend(warning);
+}
+
+/// How far beyond the swath ends a forward turn between neighbouring swaths `spacing` apart
+/// reaches, metres: a U of the turning radius where they are two radii apart or more, else a
+/// loop (three arcs of the radius, the middle one away from the swaths).
+fn loop_depth(spacing: f64, radius: f64) -> f64 {
+    if spacing >= 2.0 * radius {
+        return radius;
+    }
+    // The middle arc's centre: two radii from the centres of the end arcs, which lie a
+    // radius beyond each swath's line, away from the other.
+    let half = (spacing + 2.0 * radius) / 2.0;
+    radius + ((2.0 * radius).powi(2) - half * half).max(0.0).sqrt()
+}
+
+/// What the connections' and turns' warnings suggest to a machine that only drives forward.
 fn reversing_hint(options: &PlanOptions) -> &'static str {
     if options.reverse {
         ""
     } else {
-        "; allowing the machine to reverse may let it turn within the headland"
+        "; more headland passes or allowing the machine to reverse may let it turn within the headland"
     }
 }
 
