@@ -404,12 +404,8 @@ fn check_connections_crossing(p: &Plan, what: &str) -> (usize, usize) {
     (flagged, turns)
 }
 
-/// The crop of the swaths the path works from its segment `from` on, by geo's lines: each
-/// swath's centre line and (on strips over 2 m wide) the lines a metre in from its strip's
-/// sides, all a metre in from its ends.
-fn later_crop(p: &Plan, from: usize) -> Vec<geo::Line> {
-    use geo::Line;
-    let side = p.options.width / 2.0 - 1.0;
+/// The swaths the path works from its segment `from` on.
+fn later_swaths(p: &Plan, from: usize) -> impl Iterator<Item = &furrow::swath::Swath> {
     p.path.segments[from..]
         .iter()
         .filter(|s| s.kind == SegmentKind::Swath)
@@ -417,6 +413,15 @@ fn later_crop(p: &Plan, from: usize) -> Vec<geo::Line> {
             Some(&furrow::route::RouteStep::Swath { swath, .. }) => p.swaths.swaths.get(swath),
             _ => None,
         })
+}
+
+/// The crop of the swaths the path works from its segment `from` on, by geo's lines: each
+/// swath's centre line and (on strips over 2 m wide) the lines a metre in from its strip's
+/// sides, all a metre in from its ends.
+fn later_crop(p: &Plan, from: usize) -> Vec<geo::Line> {
+    use geo::Line;
+    let side = p.options.width / 2.0 - 1.0;
+    later_swaths(p, from)
         .filter(|w| w.length() > 0.0)
         .flat_map(|w| {
             let d = (w.centre.end - w.centre.start) / w.length();
@@ -455,13 +460,7 @@ fn connections_and_turns_over_crop_worked_later_are_flagged_and_warned_of() {
 fn longest_over_crop(p: &Plan, from: usize, line: &geo::LineString) -> f64 {
     use geo::{Densify, Euclidean};
     let side = p.options.width / 2.0 - 1.0;
-    let strips: Vec<_> = p.path.segments[from..]
-        .iter()
-        .filter(|s| s.kind == SegmentKind::Swath)
-        .filter_map(|s| match s.step.and_then(|k| p.route.steps.get(k)) {
-            Some(&furrow::route::RouteStep::Swath { swath, .. }) => p.swaths.swaths.get(swath),
-            _ => None,
-        })
+    let strips: Vec<_> = later_swaths(p, from)
         .filter(|w| w.length() > 2.0)
         .map(|w| {
             (
