@@ -25,7 +25,7 @@ use crate::path::SegmentKind;
 use crate::path::{build_path, Path};
 use crate::prohibited::{forbidding, split};
 use crate::route::headland_graph::HeadlandGraph;
-use crate::route::{plan_route, plan_route_on, Route, RouteSettings};
+use crate::route::{headland_graph, plan_route_on, Route, RouteSettings};
 use crate::swath::{
     generate_reaching, generate_with, generate_within, lifts, LinePlacement, Reach, Swath,
     SwathArea, SwathSettings, Swaths,
@@ -273,7 +273,33 @@ fn route_and_path(
     times: &mut StageTimes,
 ) -> Result<(Route, Option<Path>, Summary), PlanError> {
     let mut clock = Instant::now();
-    let route = route_candidate(prep, laid, blocks, earlier.map(|(r, _)| r));
+    // The field's headland graph where the candidate adds no passes of its own, else a graph
+    // of its passes (with the inner field as the crop its hops keep off).
+    let own = (laid.headlands.passes.len() != prep.headlands.passes.len() && earlier.is_none())
+        .then(|| {
+            let settings = RouteSettings {
+                crop: Some(laid.headlands.inner.clone()),
+                ..route_settings(prep.options, prep.field)
+            };
+            (headland_graph(&laid.headlands.passes, &settings), settings)
+        });
+    let route = match (earlier, &own) {
+        (Some((route, _)), _) => route.clone(),
+        (None, Some((graph, settings))) => plan_route_on(
+            graph,
+            &laid.swaths,
+            blocks,
+            &laid.headlands.passes,
+            settings,
+        ),
+        (None, None) => plan_route_on(
+            &prep.graph,
+            &laid.swaths,
+            blocks,
+            &laid.headlands.passes,
+            &route_settings(prep.options, prep.field),
+        ),
+    };
     times.lap(&mut clock, |t| &mut t.route);
     warnings.extend(straight_connections(&route));
     let built = earlier.is_none().then(|| {
@@ -283,7 +309,7 @@ fn route_and_path(
             &laid.headlands.passes,
             &prep.options.vehicle(),
             Some(&prep.area),
-            (laid.headlands.passes.len() == prep.headlands.passes.len()).then_some(&prep.graph),
+            Some(own.as_ref().map_or(&prep.graph, |(g, _)| g)),
         )
     });
     let Some(path) = built.as_ref().or(earlier.map(|&(_, path)| path)) else {
@@ -471,34 +497,6 @@ fn reused<'w>(earlier: &'w Worked, laid: &Laid, blocks: &Blocks) -> Option<(Rout
         earlier.route.with_swaths_renumbered(&new_index)?,
         &earlier.path,
     ))
-}
-
-/// The candidate's route: the route reused from an earlier candidate, if any; else routed on
-/// the field's headland graph where the candidate adds no passes of its own, or on a graph of
-/// its passes.
-fn route_candidate(prep: &Prepared, laid: &Laid, blocks: &Blocks, reused: Option<&Route>) -> Route {
-    let (field, options) = (prep.field, prep.options);
-    let passes = &laid.headlands.passes;
-    match reused {
-        Some(route) => route.clone(),
-        // The passes (and the inner field) of `prep` alone: their graph is built.
-        None if passes.len() == prep.headlands.passes.len() => plan_route_on(
-            &prep.graph,
-            &laid.swaths,
-            blocks,
-            passes,
-            &route_settings(options, field),
-        ),
-        None => plan_route(
-            &laid.swaths,
-            blocks,
-            passes,
-            &RouteSettings {
-                crop: Some(laid.headlands.inner.clone()),
-                ..route_settings(options, field)
-            },
-        ),
-    }
 }
 
 /// The warning for the connections that found no way along the headland and run straight
@@ -916,6 +914,7 @@ fn swaths_of(
 mod tests {
     use super::*;
     use crate::plan::plan_geojson;
+    use crate::route::plan_route;
 
     #[test]
     fn swaths_in_more_blocks_than_the_limit_are_refused() {
