@@ -14,6 +14,7 @@ use super::PathSegment;
 use crate::geometry::intervals::{union, Intervals};
 use crate::geometry::{IndexedSegment, PlanarHypot};
 use crate::route::{Route, RouteStep};
+use crate::sort::SharedSort;
 use crate::swath::Swaths;
 use geo::Coord;
 use rstar::AABB;
@@ -92,7 +93,7 @@ impl Area {
             }
             along += length;
         }
-        hits.sort_unstable_by(|a, b| a.0.total_cmp(&b.0));
+        hits.shared_sort_unstable_by(|a, b| a.0.total_cmp(&b.0));
         (union(&[], &hits), along)
     }
 
@@ -215,7 +216,7 @@ fn over_small_obstacles(swaths: &Swaths, i: usize, reversed: bool) -> Intervals 
             }
         })
         .collect();
-    out.sort_unstable_by(|a, b| a.0.total_cmp(&b.0));
+    out.shared_sort_unstable_by(|a, b| a.0.total_cmp(&b.0));
     union(&[], &out)
 }
 
