@@ -432,12 +432,11 @@ pub fn build_path(
 /// Flags (`crosses_crop`) each turn between swaths of `path` that crosses crop `route` works
 /// later and stays in the field (`build_path` flags those of a machine that reverses as it
 /// makes them, and forward only those between ends far staggered): done once for the plan
-/// chosen rather than for every candidate. Gives how many turns are flagged.
-pub fn flag_turns_over_crop(path: &mut Path, route: &Route, swaths: &Swaths) -> usize {
+/// chosen rather than for every candidate.
+pub fn flag_turns_over_crop(path: &mut Path, route: &Route, swaths: &Swaths) {
     let mut standing: Option<StandingCrop> = None;
     // The route step of the next worked segment, walking back from the end.
     let mut next_step: Option<usize> = None;
-    let mut flagged = 0;
     for seg in path.segments.iter_mut().rev() {
         if seg.step.is_some() {
             next_step = seg.step;
@@ -456,9 +455,7 @@ pub fn flag_turns_over_crop(path: &mut Path, route: &Route, swaths: &Swaths) -> 
                 seg.crosses_crop = crop.crossed(&seg.pieces, k);
             }
         }
-        flagged += usize::from(seg.kind == SegmentKind::Turn && seg.crosses_crop);
     }
-    flagged
 }
 
 /// A route step's worked segments, as `build_path` lays them before the connections.

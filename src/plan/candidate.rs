@@ -283,21 +283,22 @@ fn route_and_path(
             };
             (headland_graph(&laid.headlands.passes, &settings), settings)
         });
-    let route = match (earlier, &own) {
-        (Some((route, _)), _) => route.clone(),
-        (None, Some((graph, settings))) => plan_route_on(
+    let field_settings;
+    let (graph, settings) = match &own {
+        Some((graph, settings)) => (graph, settings),
+        None => {
+            field_settings = route_settings(prep.options, prep.field);
+            (&prep.graph, &field_settings)
+        }
+    };
+    let route = match earlier {
+        Some((route, _)) => route.clone(),
+        None => plan_route_on(
             graph,
             &laid.swaths,
             blocks,
             &laid.headlands.passes,
             settings,
-        ),
-        (None, None) => plan_route_on(
-            &prep.graph,
-            &laid.swaths,
-            blocks,
-            &laid.headlands.passes,
-            &route_settings(prep.options, prep.field),
         ),
     };
     times.lap(&mut clock, |t| &mut t.route);
@@ -309,7 +310,7 @@ fn route_and_path(
             &laid.headlands.passes,
             &prep.options.vehicle(),
             Some(&prep.area),
-            Some(own.as_ref().map_or(&prep.graph, |(g, _)| g)),
+            Some(graph),
         )
     });
     let Some(path) = built.as_ref().or(earlier.map(|&(_, path)| path)) else {
