@@ -138,18 +138,39 @@ pub fn measure(
 pub struct Tally {
     grid: Grid,
     width: f64,
-    /// Cells in the field and off its obstacles.
-    field: Vec<bool>,
-    /// Cells of the field opened by the implement's half width.
-    opened: Vec<bool>,
-    /// How many worked lines sweep each cell.
-    counts: Vec<u8>,
-    /// The last line counted on each cell: a line is counted once per cell.
-    last: Vec<u32>,
-    /// Cells off the field that a line sweeps.
-    off_field: Vec<bool>,
+    /// Each cell's state, row by row: what it is and what has worked it, in one place, so that
+    /// a strip drawn over it touches one array.
+    cells: Vec<Cell>,
+    /// The number of the next line worked, for [`Cell::last`].
+    next_line: u16,
     outside: usize,
-    lines: u32,
+}
+
+/// A cell of a [`Tally`]: whether it is in the field and in reach, and the lines over it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Cell {
+    /// The last line counted on it ([`NO_LINE`] before the first): a line is counted once per
+    /// cell, however many of its pieces sweep it.
+    last: u16,
+    /// How many worked lines sweep it (in the field).
+    count: u8,
+    /// [`IN_FIELD`], [`IN_REACH`], [`SWEPT_OFF_FIELD`].
+    flags: u8,
+}
+
+/// No line yet: the value of [`Cell::last`] before one is counted.
+const NO_LINE: u16 = u16::MAX;
+/// The cell is in the field and off its obstacles.
+const IN_FIELD: u8 = 1;
+/// The cell is of the field opened by the implement's half width.
+const IN_REACH: u8 = 2;
+/// The cell is off the field and a line sweeps it.
+const SWEPT_OFF_FIELD: u8 = 4;
+
+impl Cell {
+    fn in_field(self) -> bool {
+        self.flags & IN_FIELD != 0
+    }
 }
 
 impl Tally {
@@ -176,56 +197,65 @@ impl Tally {
         let grid = Grid::over(around, (width / CELLS_PER_WIDTH).min(MAX_CELL_M), MAX_CELLS);
         let field = field_cells(&grid, boundary, obstacles);
         let opened = opened_cells(&grid, boundary, obstacles, &field, half);
-        let n = grid.len();
+        let cells = field
+            .iter()
+            .zip(&opened)
+            .map(|(&f, &o)| Cell {
+                last: NO_LINE,
+                count: 0,
+                flags: (u8::from(f) * IN_FIELD) | (u8::from(o) * IN_REACH),
+            })
+            .collect();
         Some(Tally {
             grid,
             width,
-            field,
-            opened,
-            counts: vec![0; n],
-            last: vec![u32::MAX; n],
-            off_field: vec![false; n],
+            cells,
+            next_line: 0,
             outside: 0,
-            lines: 0,
         })
     }
 
     /// Forgets every line worked: the tally of the same field, empty again (the field's cells
     /// are kept, not drawn again).
     pub fn forget(&mut self) {
-        self.counts.fill(0);
-        self.last.fill(u32::MAX);
-        self.off_field.fill(false);
+        for c in &mut self.cells {
+            c.last = NO_LINE;
+            c.count = 0;
+            c.flags &= !SWEPT_OFF_FIELD;
+        }
         self.outside = 0;
-        self.lines = 0;
+        self.next_line = 0;
     }
 
     /// Adds `worked` lines (each a polyline driven with the implement down).
     pub fn work(&mut self, worked: &[Vec<Coord>]) {
         let half = self.width / 2.0;
-        let Tally {
-            grid,
-            field,
-            counts,
-            last,
-            off_field,
-            outside,
-            lines,
-            ..
-        } = self;
         for line in worked {
-            let k = *lines;
-            *lines = lines.wrapping_add(1);
-            let mut mark = |cells: Range<usize>| {
-                for i in cells {
-                    if !field[i] {
-                        if !off_field[i] {
-                            off_field[i] = true;
+            if self.next_line == NO_LINE {
+                // Numbers run out: every cell's last line forgotten, and counted afresh.
+                for c in &mut self.cells {
+                    c.last = NO_LINE;
+                }
+                self.next_line = 0;
+            }
+            let k = self.next_line;
+            self.next_line += 1;
+            let Tally {
+                grid,
+                cells,
+                outside,
+                ..
+            } = self;
+            let mut mark = |range: Range<usize>| {
+                for c in &mut cells[range] {
+                    if !c.in_field() {
+                        if c.flags & SWEPT_OFF_FIELD == 0 {
+                            c.flags |= SWEPT_OFF_FIELD;
                             *outside += 1;
                         }
-                    } else if last[i] != k {
-                        last[i] = k;
-                        counts[i] = counts[i].saturating_add(1);
+                    } else if c.last != k {
+                        c.last = k;
+                        c.count = c.count.saturating_add(1);
                     }
                 }
             };
@@ -235,13 +265,7 @@ impl Tally {
 
     /// The figures of the lines added so far.
     pub fn coverage(&self) -> Coverage {
-        let mut coverage = figures(
-            &self.grid,
-            &self.field,
-            &self.counts,
-            &self.opened,
-            self.width,
-        );
+        let mut coverage = figures(&self.grid, &self.cells, self.width);
         coverage.outside_area_m2 = self.outside as f64 * self.grid.cell_area();
         coverage
     }
@@ -334,15 +358,14 @@ fn sweep(grid: &Grid, line: &[Coord], half: f64, mark: &mut dyn FnMut(Range<usiz
     }
 }
 
-/// The figures of a tally: `counts` of the lines over each cell, in the `field` or not, within
-/// reach by the field's `opened` cells or by being worked.
-fn figures(grid: &Grid, field: &[bool], counts: &[u8], opened: &[bool], width: f64) -> Coverage {
+/// The figures of a tally's `cells`.
+fn figures(grid: &Grid, cells: &[Cell], width: f64) -> Coverage {
     let (mut in_field, mut covered, mut twice, mut reached) = (0usize, 0usize, 0usize, 0usize);
-    for ((&f, &c), &o) in field.iter().zip(counts).zip(opened) {
-        in_field += usize::from(f);
-        covered += usize::from(c > 0);
-        twice += usize::from(c > 1);
-        reached += usize::from(o || c > 0);
+    for c in cells {
+        in_field += usize::from(c.in_field());
+        covered += usize::from(c.count > 0);
+        twice += usize::from(c.count > 1);
+        reached += usize::from(c.flags & IN_REACH != 0 || c.count > 0);
     }
     let a = grid.cell_area();
     let field_area = in_field as f64 * a;
@@ -354,7 +377,7 @@ fn figures(grid: &Grid, field: &[bool], counts: &[u8], opened: &[bool], width: f
         }
     };
     // Of the crop left standing (no line over it), what is in reach is what the opening holds.
-    let uncovered = standing_parts(grid, field, counts, opened, width);
+    let uncovered = standing_parts(grid, cells, width);
     let covered_area = covered as f64 * a;
     Coverage {
         field_area_m2: field_area,
@@ -371,29 +394,25 @@ fn figures(grid: &Grid, field: &[bool], counts: &[u8], opened: &[bool], width: f
 
 /// The parts of the field left standing larger than a quarter of a working width squared, with
 /// their outlines, largest first.
-fn standing_parts(
-    grid: &Grid,
-    field: &[bool],
-    counts: &[u8],
-    reachable: &[bool],
-    width: f64,
-) -> Vec<Uncovered> {
+fn standing_parts(grid: &Grid, cells: &[Cell], width: f64) -> Vec<Uncovered> {
     let a = grid.cell_area();
     let least = (width * width / 4.0).greater(a * 4.0);
-    let mut out: Vec<Uncovered> =
-        outline::parts(grid.columns, grid.rows, |i| field[i] && counts[i] == 0)
-            .into_iter()
-            .filter(|p| p.cells.len() as f64 * a >= least)
-            .filter_map(|p| {
-                let reachable_m2 = p.cells.iter().filter(|&&i| reachable[i]).count() as f64 * a;
-                let polygon = outline::outline(grid, &p, grid.cell * 0.75)?;
-                Some(Uncovered {
-                    polygon,
-                    area_m2: p.cells.len() as f64 * a,
-                    reachable_m2,
-                })
-            })
-            .collect();
+    let mut out: Vec<Uncovered> = outline::parts(grid.columns, grid.rows, |i| {
+        cells[i].in_field() && cells[i].count == 0
+    })
+    .into_iter()
+    .filter(|p| p.cells.len() as f64 * a >= least)
+    .filter_map(|p| {
+        let reachable = p.cells.iter().filter(|&&i| cells[i].flags & IN_REACH != 0);
+        let reachable_m2 = reachable.count() as f64 * a;
+        let polygon = outline::outline(grid, &p, grid.cell * 0.75)?;
+        Some(Uncovered {
+            polygon,
+            area_m2: p.cells.len() as f64 * a,
+            reachable_m2,
+        })
+    })
+    .collect();
     out.shared_sort_by(|x, y| y.area_m2.total_cmp(&x.area_m2));
     out
 }
@@ -402,6 +421,33 @@ fn standing_parts(
 mod tests {
     use super::*;
     use geo::{coord, polygon, Distance, Euclidean};
+
+    #[test]
+    fn a_line_counts_once_per_cell_after_the_line_numbers_run_out() {
+        // A line driven up and back over itself works its strip once, also after more lines
+        // than the cells' numbers hold: the tally after 70,000 short lines is that of two.
+        let field = polygon![(x: 0., y: 0.), (x: 12., y: 0.), (x: 12., y: 100.), (x: 0., y: 100.)];
+        let short = vec![coord! { x: 9.0, y: 50.0 }, coord! { x: 9.0, y: 51.0 }];
+        let up_and_back = vec![
+            coord! { x: 3.0, y: 0.0 },
+            coord! { x: 3.0, y: 100.0 },
+            coord! { x: 3.0, y: 0.0 },
+        ];
+        let mut many = Tally::new(&field, &[], 6.0).expect("a tally");
+        for _ in 0..70_000 {
+            many.work(std::slice::from_ref(&short));
+        }
+        many.work(std::slice::from_ref(&up_and_back));
+        let mut two = Tally::new(&field, &[], 6.0).expect("a tally");
+        two.work(&[short.clone(), short, up_and_back]);
+        let (many, two) = (many.coverage(), two.coverage());
+        assert_eq!(many, two);
+        assert!(
+            two.overlap_ratio > 0.0 && two.overlap_ratio < 0.01,
+            "{}",
+            two.overlap_ratio
+        );
+    }
 
     #[test]
     fn a_round_drawn_as_many_short_edges_is_worked_in_full() {
