@@ -361,7 +361,12 @@ fn sweep(grid: &Grid, line: &[Coord], half: f64, mark: &mut dyn FnMut(Range<usiz
 /// The figures of a tally's `cells`.
 fn figures(grid: &Grid, cells: &[Cell], width: f64) -> Coverage {
     let (mut in_field, mut covered, mut twice, mut reached) = (0usize, 0usize, 0usize, 0usize);
-    for c in cells {
+    // The cells of the crop left standing (no line over them): few, found in the same pass.
+    let mut standing: Vec<usize> = Vec::new();
+    for (i, c) in cells.iter().enumerate() {
+        if c.in_field() && c.count == 0 {
+            standing.push(i);
+        }
         in_field += usize::from(c.in_field());
         covered += usize::from(c.count > 0);
         twice += usize::from(c.count > 1);
@@ -377,7 +382,7 @@ fn figures(grid: &Grid, cells: &[Cell], width: f64) -> Coverage {
         }
     };
     // Of the crop left standing (no line over it), what is in reach is what the opening holds.
-    let uncovered = standing_parts(grid, cells, width);
+    let uncovered = standing_parts(grid, cells, &standing, width);
     let covered_area = covered as f64 * a;
     Coverage {
         field_area_m2: field_area,
@@ -393,26 +398,26 @@ fn figures(grid: &Grid, cells: &[Cell], width: f64) -> Coverage {
 }
 
 /// The parts of the field left standing larger than a quarter of a working width squared, with
-/// their outlines, largest first.
-fn standing_parts(grid: &Grid, cells: &[Cell], width: f64) -> Vec<Uncovered> {
+/// their outlines, largest first: `standing` holds their cells, ascending.
+fn standing_parts(grid: &Grid, cells: &[Cell], standing: &[usize], width: f64) -> Vec<Uncovered> {
     let a = grid.cell_area();
     let least = (width * width / 4.0).greater(a * 4.0);
-    let mut out: Vec<Uncovered> = outline::parts(grid.columns, grid.rows, |i| {
-        cells[i].in_field() && cells[i].count == 0
-    })
-    .into_iter()
-    .filter(|p| p.cells.len() as f64 * a >= least)
-    .filter_map(|p| {
-        let reachable = p.cells.iter().filter(|&&i| cells[i].flags & IN_REACH != 0);
-        let reachable_m2 = reachable.count() as f64 * a;
-        let polygon = outline::outline(grid, &p, grid.cell * 0.75)?;
-        Some(Uncovered {
-            polygon,
-            area_m2: p.cells.len() as f64 * a,
-            reachable_m2,
-        })
-    })
-    .collect();
+    let in_set = |i: usize| cells[i].in_field() && cells[i].count == 0;
+    let mut out: Vec<Uncovered> =
+        outline::parts_from(grid.columns, grid.rows, standing.iter().copied(), in_set)
+            .into_iter()
+            .filter(|p| p.cells.len() as f64 * a >= least)
+            .filter_map(|p| {
+                let reachable = p.cells.iter().filter(|&&i| cells[i].flags & IN_REACH != 0);
+                let reachable_m2 = reachable.count() as f64 * a;
+                let polygon = outline::outline(grid, &p, grid.cell * 0.75)?;
+                Some(Uncovered {
+                    polygon,
+                    area_m2: p.cells.len() as f64 * a,
+                    reachable_m2,
+                })
+            })
+            .collect();
     out.shared_sort_by(|x, y| y.area_m2.total_cmp(&x.area_m2));
     out
 }

@@ -29,12 +29,23 @@ pub struct Part {
 /// assert_eq!(p[1].cells.len(), 3);
 /// ```
 pub fn parts(columns: usize, rows: usize, in_set: impl Fn(usize) -> bool) -> Vec<Part> {
+    parts_from(columns, rows, 0..columns * rows, in_set)
+}
+
+/// [`parts`] where the set's cells are known: `starts` holds every cell of the set (and maybe
+/// others), in ascending order, so that the grid is not searched for them.
+pub fn parts_from(
+    columns: usize,
+    rows: usize,
+    starts: impl IntoIterator<Item = usize>,
+    in_set: impl Fn(usize) -> bool,
+) -> Vec<Part> {
     let n = columns * rows;
     let mut seen = vec![false; n];
     let mut out = Vec::new();
     let mut stack = Vec::new();
-    for start in 0..n {
-        if seen[start] || !in_set(start) {
+    for start in starts {
+        if start >= n || seen[start] || !in_set(start) {
             continue;
         }
         seen[start] = true;
@@ -211,5 +222,18 @@ mod tests {
             let polygon = outline(&grid, part, 0.0).unwrap();
             assert!((polygon.unsigned_area() - 1.0).abs() < 1e-9);
         }
+    }
+
+    #[test]
+    fn parts_from_the_set_s_cells_are_the_parts_of_the_set() {
+        // A 7 x 6 checkerboard of blocks: started from its cells alone (and cells beyond the
+        // grid, ignored), the same parts in the same order as found by searching the grid.
+        let (columns, rows) = (7, 6);
+        let in_set = |i: usize| ((i % columns) / 2 + (i / columns) / 2).is_multiple_of(2);
+        let cells: Vec<usize> = (0..columns * rows).filter(|&i| in_set(i)).collect();
+        let starts = cells.iter().copied().chain([columns * rows, usize::MAX]);
+        let from = parts_from(columns, rows, starts, in_set);
+        assert_eq!(from, parts(columns, rows, in_set));
+        assert_eq!(from.len(), 6);
     }
 }
