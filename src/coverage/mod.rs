@@ -143,6 +143,24 @@ pub struct Tally {
     cells: Vec<Cell>,
     /// The number of the next line worked, for [`Cell::last`].
     next_line: u16,
+    /// The cells of each kind, kept as lines are added.
+    counts: Counts,
+}
+
+/// How many cells of a [`Tally`] are of each kind.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+struct Counts {
+    /// In the field.
+    field: usize,
+    /// In the field and in reach.
+    reach: usize,
+    /// Worked at least once.
+    covered: usize,
+    /// Worked twice or more.
+    twice: usize,
+    /// Worked, though out of reach (a plan reaches what it works).
+    covered_beyond_reach: usize,
+    /// Off the field and worked.
     outside: usize,
 }
 
@@ -197,7 +215,7 @@ impl Tally {
         let grid = Grid::over(around, (width / CELLS_PER_WIDTH).min(MAX_CELL_M), MAX_CELLS);
         let field = field_cells(&grid, boundary, obstacles);
         let opened = opened_cells(&grid, boundary, obstacles, &field, half);
-        let cells = field
+        let cells: Vec<Cell> = field
             .iter()
             .zip(&opened)
             .map(|(&f, &o)| Cell {
@@ -206,12 +224,17 @@ impl Tally {
                 flags: (u8::from(f) * IN_FIELD) | (u8::from(o) * IN_REACH),
             })
             .collect();
+        let counts = Counts {
+            field: field.iter().filter(|&&f| f).count(),
+            reach: opened.iter().filter(|&&o| o).count(),
+            ..Counts::default()
+        };
         Some(Tally {
             grid,
             width,
             cells,
             next_line: 0,
-            outside: 0,
+            counts,
         })
     }
 
@@ -223,7 +246,11 @@ impl Tally {
             c.count = 0;
             c.flags &= !SWEPT_OFF_FIELD;
         }
-        self.outside = 0;
+        self.counts = Counts {
+            field: self.counts.field,
+            reach: self.counts.reach,
+            ..Counts::default()
+        };
         self.next_line = 0;
     }
 
@@ -243,7 +270,7 @@ impl Tally {
             let Tally {
                 grid,
                 cells,
-                outside,
+                counts,
                 ..
             } = self;
             let mut mark = |range: Range<usize>| {
@@ -251,10 +278,18 @@ impl Tally {
                     if !c.in_field() {
                         if c.flags & SWEPT_OFF_FIELD == 0 {
                             c.flags |= SWEPT_OFF_FIELD;
-                            *outside += 1;
+                            counts.outside += 1;
                         }
                     } else if c.last != k {
                         c.last = k;
+                        match c.count {
+                            0 => {
+                                counts.covered += 1;
+                                counts.covered_beyond_reach += usize::from(c.flags & IN_REACH == 0);
+                            }
+                            1 => counts.twice += 1,
+                            _ => {}
+                        }
                         c.count = c.count.saturating_add(1);
                     }
                 }
@@ -265,9 +300,7 @@ impl Tally {
 
     /// The figures of the lines added so far.
     pub fn coverage(&self) -> Coverage {
-        let mut coverage = figures(&self.grid, &self.cells, self.width);
-        coverage.outside_area_m2 = self.outside as f64 * self.grid.cell_area();
-        coverage
+        figures(&self.grid, &self.cells, &self.counts, self.width)
     }
 }
 
@@ -358,20 +391,15 @@ fn sweep(grid: &Grid, line: &[Coord], half: f64, mark: &mut dyn FnMut(Range<usiz
     }
 }
 
-/// The figures of a tally's `cells`.
-fn figures(grid: &Grid, cells: &[Cell], width: f64) -> Coverage {
-    let (mut in_field, mut covered, mut twice, mut reached) = (0usize, 0usize, 0usize, 0usize);
-    // The cells of the crop left standing (no line over them): few, found in the same pass.
-    let mut standing: Vec<usize> = Vec::new();
-    for (i, c) in cells.iter().enumerate() {
-        if c.in_field() && c.count == 0 {
-            standing.push(i);
-        }
-        in_field += usize::from(c.in_field());
-        covered += usize::from(c.count > 0);
-        twice += usize::from(c.count > 1);
-        reached += usize::from(c.flags & IN_REACH != 0 || c.count > 0);
-    }
+/// The figures of a tally's `cells` of which `counts` were kept.
+fn figures(grid: &Grid, cells: &[Cell], counts: &Counts, width: f64) -> Coverage {
+    let Counts {
+        field: in_field,
+        covered,
+        twice,
+        ..
+    } = *counts;
+    let reached = counts.reach + counts.covered_beyond_reach;
     let a = grid.cell_area();
     let field_area = in_field as f64 * a;
     let ratio = |cells: usize| {
@@ -382,7 +410,7 @@ fn figures(grid: &Grid, cells: &[Cell], width: f64) -> Coverage {
         }
     };
     // Of the crop left standing (no line over it), what is in reach is what the opening holds.
-    let uncovered = standing_parts(grid, cells, &standing, width);
+    let uncovered = standing_parts(grid, cells, &standing_cells(cells), width);
     let covered_area = covered as f64 * a;
     Coverage {
         field_area_m2: field_area,
@@ -391,10 +419,25 @@ fn figures(grid: &Grid, cells: &[Cell], width: f64) -> Coverage {
         reachable_ratio: ratio(reached),
         overlap_ratio: ratio(twice),
         uncovered_area_m2: (field_area - covered_area).greater(0.0),
-        outside_area_m2: 0.0,
+        outside_area_m2: counts.outside as f64 * a,
         resolution_m: grid.cell,
         uncovered,
     }
+}
+
+/// The cells of the crop left standing (in the field, no line over them), ascending: found a
+/// block of cells at a time, most blocks having none.
+fn standing_cells(cells: &[Cell]) -> Vec<usize> {
+    const BLOCK: usize = 64;
+    let standing = |c: &Cell| c.in_field() & (c.count == 0);
+    let mut out = Vec::new();
+    for (n, block) in cells.chunks(BLOCK).enumerate() {
+        if block.iter().fold(false, |any, c| any | standing(c)) {
+            let cells = block.iter().enumerate().filter(|(_, c)| standing(c));
+            out.extend(cells.map(|(i, _)| n * BLOCK + i));
+        }
+    }
+    out
 }
 
 /// The parts of the field left standing larger than a quarter of a working width squared, with
@@ -426,6 +469,51 @@ fn standing_parts(grid: &Grid, cells: &[Cell], standing: &[usize], width: f64) -
 mod tests {
     use super::*;
     use geo::{coord, polygon, Distance, Euclidean};
+
+    /// The counts of a tally's cells, counted afresh.
+    fn recounted(tally: &Tally) -> Counts {
+        let mut c = Counts::default();
+        for cell in &tally.cells {
+            let (field, reach) = (cell.in_field(), cell.flags & IN_REACH != 0);
+            c.field += usize::from(field);
+            c.reach += usize::from(reach);
+            c.covered += usize::from(cell.count > 0);
+            c.twice += usize::from(cell.count > 1);
+            c.covered_beyond_reach += usize::from(cell.count > 0 && !reach);
+            c.outside += usize::from(cell.flags & SWEPT_OFF_FIELD != 0);
+        }
+        c
+    }
+
+    #[test]
+    fn the_counts_kept_as_lines_are_added_are_the_cells_counts() {
+        // A field with a notch and a pond, worked by crossing lines, some past the boundary.
+        let field = polygon![
+            (x: 0., y: 0.), (x: 80., y: 0.), (x: 80., y: 60.), (x: 45., y: 60.),
+            (x: 40., y: 20.), (x: 35., y: 60.), (x: 0., y: 60.)
+        ];
+        let pond = polygon![(x: 10., y: 10.), (x: 20., y: 12.), (x: 12., y: 25.)];
+        let mut tally = Tally::new(&field, &[pond], 6.0).expect("a tally");
+        let lines: Vec<Vec<Coord>> = (0..12)
+            .map(|i| {
+                let x = i as f64 * 7.5;
+                vec![
+                    coord! { x: x, y: -5.0 },
+                    coord! { x: 80.0 - x, y: 65.0 },
+                    coord! { x: x + 3.0, y: 30.0 },
+                ]
+            })
+            .collect();
+        for line in &lines {
+            tally.work(std::slice::from_ref(line));
+            assert_eq!(tally.counts, recounted(&tally));
+        }
+        let c = tally.coverage();
+        assert!(c.overlap_ratio > 0.0 && c.outside_area_m2 > 0.0 && c.reachable_ratio < 1.0);
+        tally.forget();
+        assert_eq!(tally.counts, recounted(&tally));
+        assert_eq!(tally.counts.covered, 0);
+    }
 
     #[test]
     fn a_line_counts_once_per_cell_after_the_line_numbers_run_out() {
