@@ -21,9 +21,11 @@ pub mod along;
 
 use crate::coverage::Uncovered;
 use crate::field::ProhibitedRegion;
+use crate::geometry::sleeve::{sleeve_ring, Sleeve};
 use crate::geometry::{bearing_of, swath_direction, BearingRange, BooleanOps, SweepFrame};
 use crate::headland::offset::{inset, outset};
 use crate::swath::{on_lines, SwathArea, Swaths};
+use geo::orient::{Direction, Orient};
 use geo::{Area, BoundingRect, ConvexHull, Coord, Intersects, MultiPolygon, Polygon, Rect};
 
 /// What the fill needs besides the parts left standing.
@@ -247,7 +249,10 @@ pub(crate) fn lanes(
     if core.unsigned_area() <= 0.0 {
         return None;
     }
-    let near = outset(&core, w / 2.0 - REACH_SLACK_M);
+    let near = outset(
+        &bulges_cut(&core, REACH_SLACK_M / 2.0),
+        w / 2.0 - REACH_SLACK_M,
+    );
     let box_of = near.bounding_rect()?;
     // Only the holes near the part matter.
     let lanes = centres.near(&box_of).intersection(&near);
@@ -257,6 +262,33 @@ pub(crate) fn lanes(
         near,
         lanes,
     })
+}
+
+/// `region` with the stretches of its outline that bulge into it cut by chords within
+/// `tolerance` metres (the region grows by as much, never shrinks): a core inset from a part has
+/// an arc bulging into it at each of the part's inner corners, and the outset of an arc of many
+/// points has a loop of the outline at each point to resolve (a field of 2,000 obstacles spent
+/// most of its planning there).
+fn bulges_cut(region: &MultiPolygon, tolerance: f64) -> MultiPolygon {
+    // Left of the outline, walked with the region on its left, is inside: vertices there may go.
+    let sleeve = Sleeve {
+        left: tolerance,
+        right: 0.0,
+        max_gap: f64::INFINITY,
+    };
+    let thin = |ring: &geo::LineString| {
+        let open = ring.0.split_last().map_or(&[][..], |(_, open)| open);
+        let mut kept = sleeve_ring(open, sleeve);
+        kept.extend(kept.first().copied());
+        geo::LineString::new(kept)
+    };
+    let oriented = region.orient(Direction::Default);
+    let polygons = oriented
+        .0
+        .iter()
+        .map(|p| Polygon::new(thin(p.exterior()), p.interiors().iter().map(thin).collect()))
+        .collect();
+    MultiPolygon::new(polygons)
 }
 
 /// The area the implement works along `swaths`: their strips, `width` wide, as one region.
@@ -375,8 +407,32 @@ const LANE_INSIDE_M: f64 = 0.01;
 mod tests {
     use super::*;
     use crate::coverage::measure;
-    use crate::headland::offset::inset;
+    use crate::headland::offset::{inset, outset};
     use geo::{coord, polygon, Coord};
+
+    #[test]
+    fn cutting_the_bulges_grows_a_core_by_at_most_the_tolerance() {
+        // An L with a pond: its core a width in has an arc bulging into it at the L's inner
+        // corner and all round the pond.
+        let part = polygon!(
+            exterior: [(x: 0., y: 0.), (x: 60., y: 0.), (x: 60., y: 20.), (x: 20., y: 20.), (x: 20., y: 60.), (x: 0., y: 60.)],
+            interiors: [[(x: 40., y: 8.), (x: 44., y: 8.), (x: 44., y: 12.), (x: 40., y: 12.)]],
+        );
+        let core = inset(&MultiPolygon::new(vec![part]), 1.5);
+        let cut = bulges_cut(&core, 0.025);
+        let points = |m: &MultiPolygon| geo::CoordsIter::coords_count(m);
+        assert!(
+            points(&cut) * 5 < points(&core) * 3,
+            "{} of {}",
+            points(&cut),
+            points(&core)
+        );
+        // Nothing of the core lost, and nothing added beyond the tolerance.
+        assert!(core.difference(&cut).unsigned_area() < 1e-6);
+        let within = outset(&core, 0.025 + 1e-3);
+        assert!(cut.difference(&within).unsigned_area() < 1e-6);
+        assert!(cut.unsigned_area() > core.unsigned_area());
+    }
 
     fn settings(bearing: f64) -> FillSettings<'static> {
         FillSettings {
