@@ -196,6 +196,18 @@ impl Tally {
     /// metres wide; `None` for a boundary without extent or a width that is not a positive
     /// number.
     pub fn new(boundary: &Polygon, obstacles: &[Polygon], width: f64) -> Option<Tally> {
+        let centres = strip_centres(boundary, obstacles, width);
+        Tally::with_centres(boundary, obstacles, width, &centres)
+    }
+
+    /// [`Tally::new`] where the field's [`strip_centres`] are at hand: the implement's reach is
+    /// drawn from them.
+    pub fn with_centres(
+        boundary: &Polygon,
+        obstacles: &[Polygon],
+        width: f64,
+        centres: &MultiPolygon,
+    ) -> Option<Tally> {
         let bounds = boundary.bounding_rect()?;
         if !width.is_finite() || width <= 0.0 {
             return None;
@@ -214,7 +226,7 @@ impl Tally {
         );
         let grid = Grid::over(around, (width / CELLS_PER_WIDTH).min(MAX_CELL_M), MAX_CELLS);
         let field = field_cells(&grid, boundary, obstacles);
-        let opened = opened_cells(&grid, boundary, obstacles, &field, half);
+        let opened = opened_cells(&grid, centres, &field, half);
         let cells: Vec<Cell> = field
             .iter()
             .zip(&opened)
@@ -338,30 +350,39 @@ fn turn_angle(a: Coord, b: Coord, c: Coord) -> f64 {
     cross.abs().atan2(dot)
 }
 
+/// Where the centre line of a strip `width` wide may run: the field `boundary` less all its
+/// `obstacles` (overlapping ones as their union), inset by half the width.
+///
+/// ```
+/// use furrow::coverage::strip_centres;
+/// use geo::{polygon, Area};
+///
+/// // A 30 x 100 m field worked 6 m wide: centre lines 3 m in from every side.
+/// let field = polygon![(x: 0., y: 0.), (x: 30., y: 0.), (x: 30., y: 100.), (x: 0., y: 100.)];
+/// let centres = strip_centres(&field, &[], 6.0);
+/// assert!((centres.unsigned_area() - 24.0 * 94.0).abs() < 1e-6);
+/// ```
+pub fn strip_centres(boundary: &Polygon, obstacles: &[Polygon], width: f64) -> MultiPolygon {
+    let mut region = MultiPolygon::new(vec![boundary.clone()]);
+    if !obstacles.is_empty() {
+        region = region.difference_overlapping(&MultiPolygon::new(obstacles.to_vec()));
+    }
+    inset(&region, width / 2.0)
+}
+
 /// The cells of the field a strip of half-width `radius` can reach: those of the field opened by
 /// a disc of that radius (a plan reaches whatever it works besides). The opening is the field
-/// inset by the radius and swept round by the disc again: the inset's inside and the sweep along
-/// its outline are drawn on the grid rather than offset outwards as polygons, which costs a
-/// buffer of every arc the inset has.
-fn opened_cells(
-    grid: &Grid,
-    boundary: &Polygon,
-    obstacles: &[Polygon],
-    field: &[bool],
-    radius: f64,
-) -> Vec<bool> {
-    let region = if obstacles.is_empty() {
-        MultiPolygon::new(vec![boundary.clone()])
-    } else {
-        boundary.difference(&MultiPolygon::new(obstacles.to_vec()))
-    };
+/// inset by the radius (`centres`, the [`strip_centres`]) swept round by the disc again: the
+/// inset's inside and the sweep along its outline are drawn on the grid rather than offset
+/// outwards as polygons, which costs a buffer of every arc the inset has.
+fn opened_cells(grid: &Grid, centres: &MultiPolygon, field: &[bool], radius: f64) -> Vec<bool> {
     let mut opened = vec![false; grid.len()];
     let mut mark = |cells: Range<usize>| {
         for i in cells {
             opened[i] |= field[i];
         }
     };
-    for polygon in &inset(&region, radius).0 {
+    for polygon in &centres.0 {
         grid.fill_polygon(polygon, &mut mark);
         for ring in std::iter::once(polygon.exterior()).chain(polygon.interiors()) {
             let mut line = ring.0.clone();
@@ -575,7 +596,8 @@ mod tests {
         let pond = polygon![(x: 20., y: 20.), (x: 40., y: 25.), (x: 22., y: 50.)];
         let grid = Grid::over(field.bounding_rect().unwrap(), 0.5, 1_000_000);
         let cells = field_cells(&grid, &field, std::slice::from_ref(&pond));
-        let drawn = opened_cells(&grid, &field, std::slice::from_ref(&pond), &cells, 4.0);
+        let centres = strip_centres(&field, std::slice::from_ref(&pond), 8.0);
+        let drawn = opened_cells(&grid, &centres, &cells, 4.0);
         let region = field.difference(&MultiPolygon::new(vec![pond]));
         let opening = crate::headland::offset::open(&region, 4.0);
         let mut by_polygons = vec![false; grid.len()];

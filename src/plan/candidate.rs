@@ -2,7 +2,7 @@
 //! and headlands) through its swaths, route and path to its metrics.
 
 use super::{route_settings, Prepared, DECOMPOSITION_TOLERANCE};
-use crate::coverage::{worked_lines, Coverage, Tally};
+use crate::coverage::{strip_centres, worked_lines, Coverage, Tally};
 use crate::decompose::block_headlands::cut_block_headlands;
 use crate::decompose::boustrophedon::{self, cluster_into_cells};
 use crate::decompose::split_merge::SplitMerge;
@@ -14,7 +14,6 @@ use crate::fill::along::passes_along;
 use crate::fill::{fill, FillSettings, MIN_SLIVER_WIDTHS};
 use crate::geometry::BooleanOps;
 use crate::geometry::{forbids_every_direction, SweepFrame};
-use crate::headland::offset::inset;
 use crate::headland::{HeadlandPass, Headlands, PassAround};
 use crate::metrics::{summarise, DirectionFigures, DirectionReport, StageTimes, Summary};
 use crate::numbers::{Decimals, Shortest};
@@ -127,7 +126,10 @@ pub(super) fn fill_leftovers(
         .iter()
         .map(|o| o.polygon.clone())
         .collect();
-    let Some(mut tally) = Tally::new(&prep.field.boundary, &obstacles, width) else {
+    // Where strips' centre lines may run: the tally draws the implement's reach from them.
+    let centres = strip_centres(&prep.field.boundary, &obstacles, width);
+    let Some(mut tally) = Tally::with_centres(&prep.field.boundary, &obstacles, width, &centres)
+    else {
         return Ok((worked, Coverage::default()));
     };
     tally.work(&worked_lines(&worked.path));
@@ -156,7 +158,6 @@ pub(super) fn fill_leftovers(
                 })
         },
     };
-    let centres = strip_centres(prep.field, width);
     let pieces = if before.uncovered.is_empty() {
         Vec::new()
     } else {
@@ -327,18 +328,6 @@ fn route_and_path(
     let summary = measure(prep, laid, blocks, &route, path, prep.options.machine());
     times.lap(&mut clock, |t| &mut t.metrics);
     Ok((route, built, summary))
-}
-
-/// Where the centre line of a strip of `width` may run: the field less all its obstacles, inset
-/// by half a width.
-fn strip_centres(field: &Field, width: f64) -> geo::MultiPolygon {
-    let mut region = geo::MultiPolygon::new(vec![field.boundary.clone()]);
-    if !field.obstacles.is_empty() {
-        let obstacles: Vec<geo::Polygon> =
-            field.obstacles.iter().map(|o| o.polygon.clone()).collect();
-        region = region.difference_overlapping(&geo::MultiPolygon::new(obstacles));
-    }
-    inset(&region, width / 2.0)
 }
 
 /// A candidate's swaths, the headlands they are laid in, and what laying them found.
