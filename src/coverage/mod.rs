@@ -225,20 +225,11 @@ impl Tally {
             },
         );
         let grid = Grid::over(around, (width / CELLS_PER_WIDTH).min(MAX_CELL_M), MAX_CELLS);
-        let field = field_cells(&grid, boundary, obstacles);
-        let opened = opened_cells(&grid, centres, &field, half);
-        let cells: Vec<Cell> = field
-            .iter()
-            .zip(&opened)
-            .map(|(&f, &o)| Cell {
-                last: NO_LINE,
-                count: 0,
-                flags: (u8::from(f) * IN_FIELD) | (u8::from(o) * IN_REACH),
-            })
-            .collect();
+        let mut cells = field_cells(&grid, boundary, obstacles);
+        mark_reach(&grid, centres, &mut cells, half);
         let counts = Counts {
-            field: field.iter().filter(|&&f| f).count(),
-            reach: opened.iter().filter(|&&o| o).count(),
+            field: cells.iter().filter(|c| c.in_field()).count(),
+            reach: cells.iter().filter(|c| c.flags & IN_REACH != 0).count(),
             ..Counts::default()
         };
         Some(Tally {
@@ -332,14 +323,23 @@ pub fn worked_lines(path: &Path) -> Vec<Vec<Coord>> {
         .collect()
 }
 
-/// Which cells are in the field and off its obstacles.
-fn field_cells(grid: &Grid, boundary: &Polygon, obstacles: &[Polygon]) -> Vec<bool> {
-    let mut field = vec![false; grid.len()];
-    grid.fill_polygon(boundary, &mut |cells| field[cells].fill(true));
+/// The tally's cells, those in the field and off its obstacles marked [`IN_FIELD`].
+fn field_cells(grid: &Grid, boundary: &Polygon, obstacles: &[Polygon]) -> Vec<Cell> {
+    let empty = Cell {
+        last: NO_LINE,
+        count: 0,
+        flags: 0,
+    };
+    let mut cells = vec![empty; grid.len()];
+    grid.fill_polygon(boundary, &mut |range| {
+        cells[range].iter_mut().for_each(|c| c.flags |= IN_FIELD);
+    });
     for o in obstacles {
-        grid.fill_polygon(o, &mut |cells| field[cells].fill(false));
+        grid.fill_polygon(o, &mut |range| {
+            cells[range].iter_mut().for_each(|c| c.flags &= !IN_FIELD);
+        });
     }
-    field
+    cells
 }
 
 /// The angle (radians, unsigned) the line turns at `b` on its way from `a` to `c`.
@@ -370,16 +370,17 @@ pub fn strip_centres(boundary: &Polygon, obstacles: &[Polygon], width: f64) -> M
     inset(&region, width / 2.0)
 }
 
-/// The cells of the field a strip of half-width `radius` can reach: those of the field opened by
-/// a disc of that radius (a plan reaches whatever it works besides). The opening is the field
-/// inset by the radius (`centres`, the [`strip_centres`]) swept round by the disc again: the
-/// inset's inside and the sweep along its outline are drawn on the grid rather than offset
-/// outwards as polygons, which costs a buffer of every arc the inset has.
-fn opened_cells(grid: &Grid, centres: &MultiPolygon, field: &[bool], radius: f64) -> Vec<bool> {
-    let mut opened = vec![false; grid.len()];
-    let mut mark = |cells: Range<usize>| {
-        for i in cells {
-            opened[i] |= field[i];
+/// Marks [`IN_REACH`] the cells of the field a strip of half-width `radius` can reach: those of
+/// the field opened by a disc of that radius (a plan reaches whatever it works besides). The
+/// opening is the field inset by the radius (`centres`, the [`strip_centres`]) swept round by
+/// the disc again: the inset's inside and the sweep along its outline are drawn on the grid
+/// rather than offset outwards as polygons, which costs a buffer of every arc the inset has.
+fn mark_reach(grid: &Grid, centres: &MultiPolygon, cells: &mut [Cell], radius: f64) {
+    let mut mark = |range: Range<usize>| {
+        for c in &mut cells[range] {
+            if c.in_field() {
+                c.flags |= IN_REACH;
+            }
         }
     };
     for polygon in &centres.0 {
@@ -393,7 +394,6 @@ fn opened_cells(grid: &Grid, centres: &MultiPolygon, field: &[bool], radius: f64
             sweep(grid, &line, radius, &mut mark);
         }
     }
-    opened
 }
 
 /// Calls `mark` with every cell a strip of half-width `half` sweeps along `line`: the strip of
@@ -595,9 +595,11 @@ mod tests {
         ];
         let pond = polygon![(x: 20., y: 20.), (x: 40., y: 25.), (x: 22., y: 50.)];
         let grid = Grid::over(field.bounding_rect().unwrap(), 0.5, 1_000_000);
-        let cells = field_cells(&grid, &field, std::slice::from_ref(&pond));
+        let mut marked = field_cells(&grid, &field, std::slice::from_ref(&pond));
         let centres = strip_centres(&field, std::slice::from_ref(&pond), 8.0);
-        let drawn = opened_cells(&grid, &centres, &cells, 4.0);
+        mark_reach(&grid, &centres, &mut marked, 4.0);
+        let cells: Vec<bool> = marked.iter().map(|c| c.in_field()).collect();
+        let drawn: Vec<bool> = marked.iter().map(|c| c.flags & IN_REACH != 0).collect();
         let region = field.difference(&MultiPolygon::new(vec![pond]));
         let opening = crate::headland::offset::open(&region, 4.0);
         let mut by_polygons = vec![false; grid.len()];
