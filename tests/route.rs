@@ -359,7 +359,8 @@ fn the_block_sequence_equals_an_exhaustive_search_on_fields_of_two_to_eight_bloc
                 ..route_settings(&options, &p.field)
             };
             let problem =
-                block_sequence_problem(&p.swaths, &p.blocks, &p.headlands.passes, &settings);
+                block_sequence_problem(&p.swaths, &p.blocks, &p.headlands.passes, &settings)
+                    .expect("a few blocks' connections are searched");
             let exact = solve_exact(&problem);
             let all = exhaustive(&problem);
             assert!(

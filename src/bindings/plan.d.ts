@@ -516,7 +516,7 @@ export interface RouteReport {
   pattern: SwathPattern;
   /** The swath order of each block in working order: `boustrophedon`, `snake-1`, `spiral-6`, `custom`. */
   block_patterns: string[];
-  /** How the block order was found: exactly (dynamic programming), by ant colony and local search, or (for more than 256 blocks) nearest block first. */
+  /** How the block order was found: exactly (dynamic programming), by ant colony and local search, or (for more than 256 blocks, or where the ways between them would take too long to search) nearest block first. */
   sequence: "exact" | "ant-colony" | "nearest-neighbour";
   /** Connections that found no way along the headland and run straight. */
   straight_connections: number;

@@ -670,6 +670,12 @@ impl Connections<'_> {
         out
     }
 
+    /// The number of nodes a search may settle: the points' feet on the lines, the open lines'
+    /// ends and the hops' ends.
+    pub fn node_count(&self) -> usize {
+        self.nodes.len()
+    }
+
     /// Whether point `i` joins the graph.
     pub fn is_joined(&self, i: usize) -> bool {
         matches!(self.spurs.get(i), Some(Some(_)))

@@ -508,7 +508,8 @@ pub fn plan_route_on(
 /// The block order and the way of each block, and for each block and way of the order the way
 /// in `block_ways` it stands for and whether it ends by driving back along its last swath.
 ///
-/// Up to [`nearest::MAX_SEQUENCED_WAYS`] ways in all the order is sequenced
+/// Up to [`nearest::MAX_SEQUENCED_WAYS`] ways in all, and where their connections' searches
+/// are within [`nearest::MAX_SEQUENCE_SEARCH_WORK`], the order is sequenced
 /// ([`sequence::solve`]) over the connections along the headland graph; beyond, it is the plain
 /// [`nearest::nearest_order`].
 fn sequence_blocks(
@@ -519,26 +520,27 @@ fn sequence_blocks(
 ) -> (sequence::Sequence, Vec<Vec<(usize, bool)>>) {
     let seed = between.settings.seed;
     let ways: usize = block_ways.iter().map(Vec::len).sum();
-    if ways > nearest::MAX_SEQUENCED_WAYS {
+    let plain = (ways <= nearest::MAX_SEQUENCED_WAYS)
+        .then(|| build_problem(block_ways, s, position, between, false))
+        .flatten();
+    let Some(plain) = plain else {
         let own = block_ways
             .iter()
             .map(|w| (0..w.len()).map(|wi| (wi, false)).collect())
             .collect();
         return (nearest::nearest_order(block_ways, s, position), own);
-    }
-    let plain = build_problem(block_ways, s, position, between, false);
+    };
     let solution = sequence::solve(&plain.problem, seed);
     if solution.cost < CROSSING_PENALTY_M {
         return (solution, plain.ways);
     }
     // Some block leaves the machine where the headland offers no way on: let a block also end
     // by driving back along its last swath, worked by then, to its other end.
-    let returning = build_problem(block_ways, s, position, between, true);
-    let second = sequence::solve(&returning.problem, seed);
-    if second.cost < solution.cost {
-        (second, returning.ways)
-    } else {
-        (solution, plain.ways)
+    let second = build_problem(block_ways, s, position, between, true)
+        .map(|returning| (sequence::solve(&returning.problem, seed), returning.ways));
+    match second {
+        Some((second, ways)) if second.cost < solution.cost => (second, ways),
+        _ => (solution, plain.ways),
     }
 }
 
@@ -570,13 +572,14 @@ fn cheapest_ways(
 /// The block sequence problem [`plan_route`] solves first: the field's blocks (those that fill
 /// what they leave are sequenced after them), each block's four ways in its pattern, connections along the headland from where the work starts (the entrance, or where
 /// the headland passes end when they come first). For checking the sequence against an
-/// exhaustive search.
+/// exhaustive search. `None` where its connections' searches would exceed
+/// [`nearest::MAX_SEQUENCE_SEARCH_WORK`] (the route then orders the blocks by nearest entry).
 pub fn block_sequence_problem(
     swaths: &Swaths,
     blocks: &Blocks,
     passes: &[HeadlandPass],
     settings: &RouteSettings,
-) -> SequenceProblem {
+) -> Option<SequenceProblem> {
     let graph = headland_graph(passes, settings);
     let mut position = settings.entrance;
     if settings.headland_order == HeadlandOrder::First {
@@ -601,7 +604,7 @@ pub fn block_sequence_problem(
         finish_on_headland,
         settings,
     };
-    build_problem(&block_ways, &swaths.swaths, position, &between, false).problem
+    build_problem(&block_ways, &swaths.swaths, position, &between, false).map(|p| p.problem)
 }
 
 /// What the connections of the block sequence problem go by: the headland graph, the points
@@ -625,14 +628,15 @@ struct Problem {
 /// Builds the block sequence problem: the points (where the work starts from, then each way's
 /// entry and exit), the ways, and the connection costs through the headland graph, straight at
 /// [`CROSSING_PENALTY_M`] where it offers no way. With `returning`, each way also comes in a
-/// variant that drives back along its last swath and leaves from its other end.
+/// variant that drives back along its last swath and leaves from its other end. `None` where
+/// the searches for the costs could take more than [`nearest::MAX_SEQUENCE_SEARCH_WORK`].
 fn build_problem(
     block_ways: &[Vec<BlockWay>],
     s: &[crate::swath::Swath],
     position: Option<Coord>,
     between: &Between<'_>,
     returning: bool,
-) -> Problem {
+) -> Option<Problem> {
     let Between {
         graph,
         unlimited,
@@ -680,6 +684,9 @@ fn build_problem(
     }
     let n = points.len();
     let connections = graph.connect_with(&points, unlimited);
+    if n.saturating_mul(connections.node_count()) > nearest::MAX_SEQUENCE_SEARCH_WORK {
+        return None;
+    }
     // Connection costs from every exit (and the start) to every entry.
     let mut is_exit = vec![false; n];
     let mut is_entry = vec![false; n];
@@ -729,7 +736,7 @@ fn build_problem(
             }
         }
     }
-    Problem {
+    Some(Problem {
         problem: SequenceProblem {
             ways: problem_ways,
             points: n,
@@ -738,7 +745,7 @@ fn build_problem(
             to_finish,
         },
         ways,
-    }
+    })
 }
 
 /// The index of a point in `points`, added if new.
@@ -1053,6 +1060,44 @@ mod tests {
                 _ => panic!("two swaths a block"),
             }
         }
+    }
+
+    #[test]
+    fn blocks_whose_connection_searches_are_too_large_are_ordered_nearest_first() {
+        // Six strips of two swaths (four ways each, from and to their 24 corners: 25 points
+        // with the start), among open headland pieces 1 m long on a 20 m grid, too far apart
+        // to hop between: two nodes each.
+        let strips: Vec<geo::Polygon> = (0..6)
+            .map(|i| {
+                let x = 100.0 + 40.0 * i as f64;
+                polygon![(x: x, y: 100.), (x: x + 12., y: 100.), (x: x + 12., y: 140.), (x: x, y: 140.)]
+            })
+            .collect();
+        let swaths = generate(&MultiPolygon::new(strips), 0.0, 6.0, 6.0).unwrap();
+        let blocks = cluster_swaths(&swaths);
+        let pieces = |count: usize| -> Vec<HeadlandPass> {
+            (0..count)
+                .map(|k| {
+                    let (x, y) = ((k % 300) as f64 * 20.0, (k / 300) as f64 * 20.0 + 3.0);
+                    HeadlandPass {
+                        index: 1,
+                        line: LineString::from(vec![(x, y), (x + 1.0, y)]),
+                        closed: false,
+                        around: crate::headland::PassAround::Field,
+                    }
+                })
+                .collect()
+        };
+        // 25 points and 2,000 nodes: sequenced.
+        let few = pieces(1_000);
+        let route = boustrophedon(&swaths, &blocks, &few, HeadlandOrder::Last, None);
+        assert_ne!(route.sequence.method, SequenceMethod::NearestNeighbour);
+        // 25 points and 180,000 nodes: 4.5 million, beyond the searches' limit.
+        let many = pieces(90_000);
+        assert!(25 * 2 * many.len() > nearest::MAX_SEQUENCE_SEARCH_WORK);
+        let route = boustrophedon(&swaths, &blocks, &many, HeadlandOrder::Last, None);
+        assert_eq!(route.sequence.method, SequenceMethod::NearestNeighbour);
+        assert_every_swath_once(&route, swaths.swaths.len());
     }
 
     #[test]
