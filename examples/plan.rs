@@ -10,6 +10,12 @@
 //! new option is a new flag without any change to this file. `FIELD` may be `-` for standard
 //! input. The plan (GeoJSON) goes to standard output unless `--out` names a file.
 //!
+//! `FIELD` may also be a zipped Shapefile (`.zip` with `.shp`, `.shx`, `.dbf`, `.prj`), read and
+//! converted to WGS84 by `furrow::formats`. A file of several parcels (a register's export, as
+//! a Shapefile or GeoJSON) is planned one parcel at a time: `--parcel INDEX` picks one (0 for
+//! the first). `--field-only` prints the field as read (GeoJSON, all its parcels or the one
+//! picked) instead of planning it.
+//!
 //! With `--from LON,LAT --heading DEG --to LON,LAT` it prints, instead of the plan, the shortest
 //! way along the plan's tracks from there to the nearest point of the boundary lane to `--to`
 //! (repeat `--to` for several exits; the nearest wins): a GeoJSON Feature with its `length_m`.
@@ -27,6 +33,7 @@
 #![allow(clippy::result_large_err)] // the error path of a command-line tool
 
 use furrow::field::geojson::MAX_INPUT_BYTES;
+use furrow::formats::{read_field_file, MAX_FILE_BYTES};
 use furrow::options::OPTION_DOCS;
 use furrow::tracks::{PlanTracks, Turning};
 use furrow::{plan_geojson, ErrorCode, PlanError, PlanOptions};
@@ -35,7 +42,7 @@ use std::io::{Read, Write};
 use std::process::ExitCode;
 
 const USAGE: &str =
-    "usage: plan FIELD.geojson [--OPTION VALUE ...] [--out PLAN.geojson] [--pretty] [--summary]";
+    "usage: plan FIELD.geojson|FIELD.zip [--parcel INDEX] [--OPTION VALUE ...] [--out PLAN.geojson] [--pretty] [--summary] [--field-only]";
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -70,6 +77,10 @@ struct Command {
     pretty: bool,
     summary_only: bool,
     path: Option<PathQuery>,
+    /// The parcel of a file of several to plan.
+    parcel: Option<usize>,
+    /// Print the field as read, not its plan.
+    field_only: bool,
 }
 
 /// A shortest-path question (`--from`, `--heading`, `--to`, `--turning`).
@@ -93,7 +104,12 @@ fn run(args: &[String]) -> Result<(), Failure> {
                 format!("invalid option: {}", kebab_message(&e.to_string())),
             ))
         })?;
-    let text = read_input(&command.field)?;
+    let text = read_field(&command.field, command.parcel, command.field_only)?;
+    if command.field_only {
+        let mut out = text;
+        out.push('\n');
+        return write_out(&command.out, &out);
+    }
     let plan = plan_geojson(&text, &options).map_err(Failure::Invalid)?;
     if let Some(q) = &command.path {
         let tracks = PlanTracks::from_plan(&plan);
@@ -139,7 +155,7 @@ fn position(flag: &str, text: Option<String>) -> Result<[f64; 2], Failure> {
 /// Whether the flag is a yes-or-no one, `true` without a value.
 fn is_switch(flag: &str) -> bool {
     let key = camel_case(flag);
-    matches!(flag, "pretty" | "summary")
+    matches!(flag, "pretty" | "summary" | "field-only")
         || OPTION_DOCS
             .iter()
             .any(|(k, unit, _)| *k == key && *unit == "true|false")
@@ -204,7 +220,8 @@ fn parse_args(args: &[String]) -> Result<Command, Failure> {
     let mut field = None;
     let mut options = Map::new();
     let mut out = None;
-    let (mut pretty, mut summary_only) = (false, false);
+    let (mut pretty, mut summary_only, mut field_only) = (false, false, false);
+    let mut parcel = None;
     let (mut from, mut heading, mut to, mut turning) = (None, None, Vec::new(), None);
     let mut i = 0;
     while i < args.len() {
@@ -238,6 +255,15 @@ fn parse_args(args: &[String]) -> Result<Command, Failure> {
             "out" => out = Some(value.ok_or_else(|| Failure::Usage("--out needs a path".into()))?),
             "pretty" => pretty = true,
             "summary" => summary_only = true,
+            "field-only" => field_only = true,
+            "parcel" => {
+                let v = value.unwrap_or_default();
+                parcel = Some(v.trim().parse::<usize>().map_err(|_| {
+                    Failure::Usage(format!(
+                        "--parcel {v}: not the index of a parcel (0 for the first)"
+                    ))
+                })?);
+            }
             "from" => from = Some(position("from", value)?),
             "to" => to.push(position("to", value)?),
             "heading" => {
@@ -302,6 +328,8 @@ fn parse_args(args: &[String]) -> Result<Command, Failure> {
         pretty,
         summary_only,
         path,
+        parcel,
+        field_only,
     })
 }
 
@@ -386,43 +414,102 @@ fn kebab_message(message: &str) -> String {
 /// Reads the field's text from the file `path` names, or from standard input (`-`): at most
 /// [`MAX_INPUT_BYTES`] and one byte more, so that an input too large is refused without reading
 /// it all. Text that is too large or not UTF-8 is the input's fault (exit 2), not the file's.
-fn read_input(path: &str) -> Result<String, Failure> {
-    let limit = MAX_INPUT_BYTES as u64 + 1;
-    let mut bytes = Vec::new();
-    if path == "-" {
-        std::io::stdin()
-            .lock()
-            .take(limit)
-            .read_to_end(&mut bytes)
-            .map_err(|e| Failure::Io(format!("cannot read standard input: {e}")))?;
+/// The field file `path` names as GeoJSON text: GeoJSON as it is, a zipped Shapefile read into
+/// GeoJSON; with `parcel`, only that parcel of the file (a feature of a FeatureCollection).
+/// A Shapefile of several parcels is refused without `parcel` unless `all` are asked for.
+fn read_field(path: &str, parcel: Option<usize>, all: bool) -> Result<String, Failure> {
+    let bytes = read_input(path)?;
+    let mut geojson = if bytes.starts_with(b"PK") {
+        let file = read_field_file(&bytes, path).map_err(Failure::Invalid)?;
+        let count = file.parcels.len();
+        if count > 1 && parcel.is_none() && !all {
+            return Err(Failure::Invalid(PlanError::new(
+                ErrorCode::AmbiguousBoundary,
+                format!("{path} holds {count} parcels: plan one with --parcel INDEX (0 to {}), or see them with --field-only", count - 1),
+            )));
+        }
+        file.to_geojson()
     } else {
-        let file = std::fs::File::open(path)
-            .map_err(|e| Failure::Io(format!("cannot read {path}: {e}")))?;
+        let text = String::from_utf8(bytes)
+            .map_err(|e| Failure::Invalid(not_utf8(e.as_bytes(), e.utf8_error())))?;
+        match parcel {
+            None => return Ok(text),
+            Some(_) => serde_json::from_str(&text).map_err(|e| {
+                Failure::Invalid(PlanError::new(
+                    ErrorCode::InvalidJson,
+                    format!("the input is not JSON: {e}"),
+                ))
+            })?,
+        }
+    };
+    if let Some(index) = parcel {
+        let features = geojson.get_mut("features").and_then(Value::as_array_mut);
+        let count = features.as_ref().map_or(0, |f| f.len());
+        let picked = features
+            .filter(|f| index < f.len())
+            .map(|f| f.swap_remove(index))
+            .ok_or_else(|| {
+                Failure::Usage(format!(
+                    "--parcel {index}: the file holds {count} parcel{}",
+                    if count == 1 { "" } else { "s" }
+                ))
+            })?;
+        geojson["features"] = Value::Array(vec![picked]);
+    }
+    Ok(geojson.to_string())
+}
+
+/// The bytes of the file `path` names (`-`: standard input): GeoJSON text up to its limit, a
+/// zip archive (a Shapefile) up to the field files' own.
+fn read_input(path: &str) -> Result<Vec<u8>, Failure> {
+    let name = if path == "-" { "standard input" } else { path };
+    let io = |e: std::io::Error| Failure::Io(format!("cannot read {name}: {e}"));
+    let mut source: Box<dyn Read> = if path == "-" {
+        Box::new(std::io::stdin().lock())
+    } else {
+        let file = std::fs::File::open(path).map_err(io)?;
         // A regular file says its size; a pipe or device says 0 and is cut off by `take`.
         if let Ok(meta) = file.metadata() {
-            if meta.len() > MAX_INPUT_BYTES as u64 {
+            if meta.len() > MAX_FILE_BYTES as u64 {
                 return Err(too_large(&format!("{} MB", meta.len() / (1024 * 1024))));
             }
         }
-        file.take(limit)
-            .read_to_end(&mut bytes)
-            .map_err(|e| Failure::Io(format!("cannot read {path}: {e}")))?;
-    }
+        Box::new(file)
+    };
+    let mut bytes = Vec::new();
+    source
+        .by_ref()
+        .take(MAX_INPUT_BYTES as u64 + 1)
+        .read_to_end(&mut bytes)
+        .map_err(io)?;
     if bytes.len() > MAX_INPUT_BYTES {
-        return Err(too_large(&format!(
-            "more than {} MB",
-            MAX_INPUT_BYTES / (1024 * 1024)
-        )));
+        if !bytes.starts_with(b"PK") {
+            return Err(too_large(&format!(
+                "more than {} MB",
+                MAX_INPUT_BYTES / (1024 * 1024)
+            )));
+        }
+        source
+            .take((MAX_FILE_BYTES - MAX_INPUT_BYTES) as u64 + 1)
+            .read_to_end(&mut bytes)
+            .map_err(io)?;
+        if bytes.len() > MAX_FILE_BYTES {
+            return Err(too_large(&format!(
+                "more than {} MB",
+                MAX_FILE_BYTES / (1024 * 1024)
+            )));
+        }
     }
-    String::from_utf8(bytes).map_err(|e| Failure::Invalid(not_utf8(e.as_bytes(), e.utf8_error())))
+    Ok(bytes)
 }
 
 fn too_large(size: &str) -> Failure {
     Failure::Invalid(PlanError::new(
         ErrorCode::InputTooLarge,
         format!(
-            "the input is {size}; the planner accepts up to {} MB of GeoJSON",
-            MAX_INPUT_BYTES / (1024 * 1024)
+            "the input is {size}; the planner accepts up to {} MB of GeoJSON and {} MB of a zipped Shapefile",
+            MAX_INPUT_BYTES / (1024 * 1024),
+            MAX_FILE_BYTES / (1024 * 1024)
         ),
     ))
 }
@@ -452,7 +539,12 @@ fn print_help() {
         env!("CARGO_PKG_VERSION")
     );
     println!("{USAGE}\n");
-    println!("FIELD is GeoJSON (a FeatureCollection with roles, a Feature or a Polygon); - reads standard input.\n");
+    println!("FIELD is GeoJSON (a FeatureCollection with roles, a Feature or a Polygon) or a zipped Shapefile (.zip with .shp, .shx, .dbf, .prj); - reads standard input.\n");
+    println!("  --{:<22} {:<13} the parcel to plan of a file of several (a register's export), 0 for the first", "parcel", "<index>");
+    println!(
+        "  --{:<22} {:<13} print the field as read (GeoJSON in WGS84) instead of planning it\n",
+        "field-only", ""
+    );
     println!("Planner options:");
     for (key, unit, doc) in OPTION_DOCS {
         println!(

@@ -58,6 +58,10 @@ pub enum ErrorCode {
     NoAllowedDirection,
     /// The fixed bearing asked for lies in a forbidden range.
     BearingForbidden,
+    /// A field file (a zipped Shapefile) is damaged, incomplete or not the format it claims.
+    InvalidFile,
+    /// A field file's coordinate system is one furrow cannot convert from, or unknown.
+    UnknownCrs,
     /// The field's coordinates look like [latitude, longitude]: as given the field lies in the
     /// sea, swapped it lies on land.
     CoordinatesSwapped,
@@ -96,6 +100,8 @@ impl ErrorCode {
         ErrorCode::HeadlandConsumesField,
         ErrorCode::NoAllowedDirection,
         ErrorCode::BearingForbidden,
+        ErrorCode::InvalidFile,
+        ErrorCode::UnknownCrs,
         ErrorCode::CoordinatesSwapped,
         ErrorCode::OffTracks,
         ErrorCode::NoPath,
@@ -126,6 +132,8 @@ impl ErrorCode {
             ErrorCode::HeadlandConsumesField => "headland_consumes_field",
             ErrorCode::NoAllowedDirection => "no_allowed_direction",
             ErrorCode::BearingForbidden => "bearing_forbidden",
+            ErrorCode::InvalidFile => "invalid_file",
+            ErrorCode::UnknownCrs => "unknown_crs",
             ErrorCode::CoordinatesSwapped => "coordinates_swapped",
             ErrorCode::OffTracks => "off_tracks",
             ErrorCode::NoPath => "no_path",

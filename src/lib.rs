@@ -45,6 +45,8 @@ pub mod direction;
 pub mod error;
 pub mod field;
 pub mod fill;
+#[cfg(feature = "formats")]
+pub mod formats;
 pub mod geometry;
 pub mod headland;
 pub mod metrics;

@@ -452,16 +452,74 @@ fn input_over_32_mb_is_refused_unread() {
         Err(std::io::ErrorKind::BrokenPipe),
         "the planner read all the input"
     );
-    // A file says its size: a sparse one of 33 MB is refused by it.
+    // A file says its size: a sparse one larger than any field file is refused by it; one of
+    // 33 MB that is not a zip archive is refused as GeoJSON over its limit.
     let dir = std::env::temp_dir().join(format!("furrow-cli-large-{}", std::process::id()));
     std::fs::create_dir_all(&dir).expect("temp dir");
     let path = dir.join("large.geojson");
-    let file = std::fs::File::create(&path).expect("created");
-    file.set_len(limit as u64 + 1024 * 1024).expect("sized");
-    let out = run(&[&path.display().to_string()]);
-    assert_eq!(out.status.code(), Some(2));
-    assert_eq!(error_code(&out), "input_too_large");
+    for size in [
+        furrow::formats::MAX_FILE_BYTES as u64 + 1,
+        limit as u64 + 1024 * 1024,
+    ] {
+        let file = std::fs::File::create(&path).expect("created");
+        file.set_len(size).expect("sized");
+        let out = run(&[&path.display().to_string()]);
+        assert_eq!(out.status.code(), Some(2));
+        assert_eq!(error_code(&out), "input_too_large");
+    }
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// A register's export as a zipped Shapefile (RD New, `scripts/format-fixtures.sh`).
+fn shapefile_fixture() -> String {
+    concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/format-fixtures/nl_brp_rd_new.zip"
+    )
+    .to_string()
+}
+
+#[test]
+fn a_zipped_shapefile_of_several_parcels_plans_the_one_picked() {
+    let zip = shapefile_fixture();
+    // Its 53 parcels as GeoJSON in WGS84.
+    let out = run(&[&zip, "--field-only"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let field: serde_json::Value = serde_json::from_slice(&out.stdout).expect("GeoJSON");
+    assert_eq!(field["features"].as_array().map(Vec::len), Some(53));
+    assert_eq!(field["source"]["crs"], "EPSG:28992 (Amersfoort / RD New)");
+    // Planned without a pick: which one?
+    let out = run(&[&zip, "--summary"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert_eq!(error_code(&out), "ambiguous_boundary");
+    // The first parcel picked plans, where the register has it (near 4.58 E, 52.12 N).
+    let out = run(&[&zip, "--parcel", "0", "--width", "6"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let plan: serde_json::Value = serde_json::from_slice(&out.stdout).expect("a plan");
+    assert!(plan["summary"]["swath_count"].as_u64().unwrap_or(0) > 0);
+    let first = &plan["features"][0]["geometry"]["coordinates"];
+    let text = first.to_string();
+    assert!(text.contains("[4.57") && text.contains(",52.11"), "{text}");
+    // A parcel the file does not have.
+    let out = run(&[&zip, "--parcel", "53"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert_eq!(error_code(&out), "usage");
+}
+
+#[test]
+fn a_cut_zip_exits_2_with_invalid_file() {
+    let bytes = std::fs::read(shapefile_fixture()).expect("fixture");
+    let out = run_on(&bytes[..bytes.len() / 2], &["--summary"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert_eq!(error_code(&out), "invalid_file");
 }
 
 /// The middle of `rectangle.geojson` and its south-west corner.

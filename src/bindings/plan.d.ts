@@ -654,6 +654,8 @@ export type ErrorCode =
   | "headland_consumes_field"
   | "no_allowed_direction"
   | "bearing_forbidden"
+  | "invalid_file"
+  | "unknown_crs"
   | "coordinates_swapped"
   | "off_tracks"
   | "no_path"

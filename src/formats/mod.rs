@@ -1,0 +1,164 @@
+//! Fields from the files farm software exports, read into the GeoJSON the planner takes.
+//!
+//! A field lives in a farm management system or a terminal, not in GeoJSON: most export zipped
+//! Shapefiles. [`read_field_file`] takes such a file's bytes and gives its parcels, each a
+//! polygon in WGS84 longitude and latitude with its attributes, as a GeoJSON FeatureCollection
+//! ([`FieldFile::to_geojson_string`]): a file of one parcel plans as it is, a file of several
+//! is a register's export to pick one from (the viewer lists them; the CLI's `--parcel`).
+//!
+//! - [`zip`]: the files of a zip archive.
+//! - [`shapefile`]: the parcels of a Shapefile.
+//! - [`crs`]: the coordinate systems they come in, converted to WGS84.
+
+pub mod crs;
+pub mod shapefile;
+pub mod zip;
+
+use self::shapefile::{read_shapefile, ShapefileParts};
+use crate::error::{ErrorCode, PlanError};
+use geo::Polygon;
+use serde_json::{json, Map, Value};
+
+/// The largest file read: a Shapefile of a farm's fields is a few megabytes.
+pub const MAX_FILE_BYTES: usize = 64 << 20;
+
+/// One parcel of a file: its outline (and holes) in WGS84 longitude and latitude.
+#[derive(Debug, Clone)]
+pub struct Parcel {
+    /// Longitude and latitude, degrees.
+    pub polygon: Polygon,
+    /// Its attributes in the file (a Shapefile's `.dbf` columns), and `part` where its record
+    /// held several polygons.
+    pub properties: Map<String, Value>,
+    /// The record of the file it comes from (0 for the first).
+    pub record: usize,
+}
+
+/// What a field file holds.
+#[derive(Debug, Clone)]
+pub struct FieldFile {
+    /// Its parcels, in the file's order.
+    pub parcels: Vec<Parcel>,
+    /// The format read: `"shapefile"`.
+    pub format: &'static str,
+    /// The coordinate system the file was in, converted from: `"EPSG:28992 (Amersfoort / RD New)"`.
+    pub crs: String,
+}
+
+/// The parcels of a field file: a zipped Shapefile (`.zip` holding `.shp`, `.shx`, `.dbf`
+/// and `.prj`). `name` is the file's name, for the format where its bytes do not tell.
+///
+/// ```
+/// use furrow::formats::read_field_file;
+///
+/// let e = read_field_file(b"<kml/>", "fields.kml").unwrap_err();
+/// assert_eq!(e.code, furrow::ErrorCode::InvalidFile);
+/// ```
+pub fn read_field_file(bytes: &[u8], name: &str) -> Result<FieldFile, PlanError> {
+    if bytes.len() > MAX_FILE_BYTES {
+        return Err(PlanError::new(
+            ErrorCode::InputTooLarge,
+            format!(
+                "the file is {} MB, more than the {} MB a field file may be",
+                bytes.len() >> 20,
+                MAX_FILE_BYTES >> 20
+            ),
+        ));
+    }
+    if bytes.starts_with(b"PK") {
+        let files = zip::unzip(bytes)?;
+        let named: Vec<(&str, &[u8])> = files
+            .iter()
+            .map(|f| (f.path.as_str(), f.bytes.as_slice()))
+            .collect();
+        return read_shapefile_files(&named);
+    }
+    Err(PlanError::new(
+        ErrorCode::InvalidFile,
+        format!(
+            "{name} is not a file furrow reads: a field is GeoJSON or a zipped Shapefile (.zip with .shp, .shx, .dbf and .prj)"
+        ),
+    ))
+}
+
+/// The parcels of a Shapefile given as its files (name and bytes): those of a zip archive, or
+/// the parts dropped together. The first `.shp` is read, with the files of the same name.
+pub fn read_shapefile_files(files: &[(&str, &[u8])]) -> Result<FieldFile, PlanError> {
+    let extension = |path: &str, ext: &str| {
+        path.len() > ext.len()
+            && path.is_char_boundary(path.len() - ext.len())
+            && path[path.len() - ext.len()..].eq_ignore_ascii_case(ext)
+    };
+    let stem_of = |path: &str| path[..path.len() - 4].to_string();
+    let shp = files.iter().find(|(p, _)| extension(p, ".shp"));
+    let Some(&(shp_path, shp)) = shp else {
+        return Err(PlanError::new(
+            ErrorCode::InvalidFile,
+            "the files hold no Shapefile: no .shp file (the shapes) among them",
+        ));
+    };
+    let stem = stem_of(shp_path);
+    let part = |ext: &str| {
+        files
+            .iter()
+            .find(|(p, _)| extension(p, ext) && stem_of(p) == stem)
+            .map(|&(_, bytes)| bytes)
+    };
+    let parts = ShapefileParts {
+        shp: Some(shp),
+        shx: part(".shx"),
+        dbf: part(".dbf"),
+        prj: part(".prj"),
+    };
+    let (parcels, crs) = read_shapefile(parts)?;
+    Ok(FieldFile {
+        parcels,
+        format: "shapefile",
+        crs: format!("EPSG:{} ({})", crs.epsg, crs.name),
+    })
+}
+
+impl FieldFile {
+    /// The parcels as a GeoJSON FeatureCollection of Polygon features (coordinates to nine
+    /// decimals, a tenth of a millimetre), with their attributes as properties; and the
+    /// format and the system read from as the collection's `source`.
+    pub fn to_geojson(&self) -> Value {
+        let features: Vec<Value> = self
+            .parcels
+            .iter()
+            .map(|p| {
+                json!({
+                    "type": "Feature",
+                    "properties": p.properties,
+                    "geometry": polygon_json(&p.polygon),
+                })
+            })
+            .collect();
+        json!({
+            "type": "FeatureCollection",
+            "source": { "format": self.format, "crs": self.crs },
+            "features": features,
+        })
+    }
+
+    /// [`to_geojson`](Self::to_geojson) as text.
+    pub fn to_geojson_string(&self) -> String {
+        self.to_geojson().to_string()
+    }
+}
+
+fn polygon_json(polygon: &Polygon) -> Value {
+    let ring = |line: &geo::LineString| -> Value {
+        line.0
+            .iter()
+            .map(|c| json!([round9(c.x), round9(c.y)]))
+            .collect()
+    };
+    let mut rings = vec![ring(polygon.exterior())];
+    rings.extend(polygon.interiors().iter().map(ring));
+    json!({ "type": "Polygon", "coordinates": rings })
+}
+
+fn round9(x: f64) -> f64 {
+    (x * 1e9).round() / 1e9
+}
