@@ -7,6 +7,7 @@
 //   bash scripts/build.sh   (once), then   node --test pkg-tests/first-hour.test.mjs
 import { test } from "node:test";
 import assert from "node:assert/strict";
+import { execFileSync } from "node:child_process";
 import { mkdirSync, readFileSync, rmSync, statSync, writeFileSync } from "node:fs";
 import { join } from "node:path";
 import {
@@ -324,6 +325,52 @@ test("first hour: a 1.2 M-vertex file is refused within 3 s without holding up t
       await ready(page);
       assert.deepEqual((await errorList()).filter(([, kind]) => kind === "error"), []);
       assert.ok(await page.isHidden("#map-message"));
+    });
+  } finally {
+    rmSync(dir, { recursive: true, force: true });
+  }
+});
+
+test("first hour: a zipped Shapefile in RD New opens as its parcels where the register has them; its parts chosen together open the same; a cut one is refused", { timeout: TIMEOUT }, async () => {
+  const fixtures = join(FIELDS, "..", "format-fixtures");
+  const register = JSON.parse(readFileSync(join(FIELDS, "real/nl_brp_2023_sample.geojson"), "utf8"));
+  const dir = join(SHOTS, "..", "first-hour-shapefile");
+  mkdirSync(dir, { recursive: true });
+  try {
+    // The zip's parts, unpacked by Python's zipfile, and the zip cut short.
+    const zip = join(fixtures, "nl_brp_rd_new.zip");
+    execFileSync("python3", ["-c", "import sys, zipfile; zipfile.ZipFile(sys.argv[1]).extractall(sys.argv[2])", zip, dir]);
+    const bytes = readFileSync(zip);
+    const cut = join(dir, "cut.zip");
+    writeFileSync(cut, bytes.subarray(0, bytes.length >> 1));
+    await withViewer(DESKTOP, async (page, base) => {
+      await page.goto(base);
+      await ready(page);
+      const open = async (paths) => {
+        const [chooser] = await Promise.all([page.waitForEvent("filechooser"), page.click("#open-file")]);
+        await chooser.setFiles(paths);
+      };
+      const names = () => page.$$eval("#parcels-list button .parcel-name", (n) => n.map((e) => e.textContent));
+      const ids = register.features.map((f) => f.properties.id);
+      for (const paths of [zip, ["shp", "shx", "dbf", "prj"].map((ext) => join(dir, `nl_brp_rd_new.${ext}`))]) {
+        await open(paths);
+        await page.waitForSelector("body[data-plan-state=pick]");
+        assert.deepEqual(await names(), ids, "every parcel, by its id, in the file's order");
+      }
+      // The first parcel, picked, plans where the register has it (RD New read with its datum
+      // shift: without it the parcel would lie about 114 m away).
+      await page.click(`#parcels-list button:has-text("${ids[0]}")`);
+      await planned(page);
+      assert.ok(Number((await dataset(page)).swathCount) > 0, "the parcel is planned");
+      const ring = await page.evaluate(() => window.furrow.document.features[0].geometry.coordinates[0]);
+      const want = register.features[0].geometry.coordinates[0];
+      assert.equal(ring.length, want.length);
+      const off = Math.max(...ring.map((p) => Math.min(...want.map((q) => Math.hypot((p[0] - q[0]) * 68_500, (p[1] - q[1]) * 111_200)))));
+      assert.ok(off < 0.01, `a corner read ${off} m from the register's`);
+      // A download cut short: a typed error, nothing planned.
+      await open(cut);
+      await page.waitForSelector("body[data-plan-state=error] #map-message[data-code=invalid_file]");
+      assert.match(await page.textContent("#map-message"), /damaged or incomplete/);
     });
   } finally {
     rmSync(dir, { recursive: true, force: true });

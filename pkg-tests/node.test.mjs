@@ -18,6 +18,9 @@ const furrow = await import(new URL("furrow.js", pkgUrl));
 furrow.initSync({ module: readFileSync(new URL("furrow_wasm_bg.wasm", pkgUrl)) });
 const tracksEntry = await import(new URL("tracks.js", pkgUrl));
 tracksEntry.initSync({ module: readFileSync(new URL("furrow_tracks_wasm_bg.wasm", pkgUrl)) });
+const formatsEntry = await import(new URL("formats.js", pkgUrl));
+formatsEntry.initSync({ module: readFileSync(new URL("furrow_formats_wasm_bg.wasm", pkgUrl)) });
+const fixturesUrl = new URL("../tests/format-fixtures/", import.meta.url);
 
 const readField = (name) => JSON.parse(readFileSync(new URL(name, fieldsUrl), "utf8"));
 
@@ -82,6 +85,51 @@ test("the planner's module is within its 400 KB gzipped; the tracks' is apart fr
   assert.ok(gzipped("furrow_tracks_wasm_bg.wasm") > 20_000, "the tracks' code is in its own module");
 });
 
+test("furrow/formats reads a zipped Shapefile (RD New) to the register's parcels, in a module of its own", () => {
+  const gzipped = (file) => gzipSync(readFileSync(new URL(file, pkgUrl)), { level: 9 }).length;
+  assert.ok(gzipped("furrow_formats_wasm_bg.wasm") > 50_000, "the readers are in their own module");
+  const zip = readFileSync(new URL("nl_brp_rd_new.zip", fixturesUrl));
+  const file = formatsEntry.readFieldFile(zip, "nl_brp_rd_new.zip");
+  assert.equal(file.type, "FeatureCollection");
+  assert.equal(file.source.crs, "EPSG:28992 (Amersfoort / RD New)");
+  // The register's own WGS84 coordinates (written by another program, GDAL, in RD New): every
+  // vertex within a centimetre (1e-7 degrees is 1.1 cm of latitude).
+  const register = readField("real/nl_brp_2023_sample.geojson");
+  assert.equal(file.features.length, register.features.length);
+  file.features.forEach((f, i) => {
+    const got = f.geometry.coordinates.flat();
+    const want = register.features[i].geometry.coordinates.flat();
+    assert.equal(got.length, want.length, `parcel ${i}`);
+    for (const p of got) {
+      const near = want.some((q) => Math.abs(p[0] - q[0]) < 1e-7 && Math.abs(p[1] - q[1]) < 1e-7);
+      assert.ok(near, `parcel ${i}: ${p} is not a vertex of the register's`);
+    }
+  });
+  // A parcel plans as a field of its own.
+  const result = furrow.plan(file.features[0], { width: 6 });
+  assert.ok(result.summary.swath_count > 0);
+  // The parts dropped together read as the zip does; a damaged zip is a typed error.
+  const parts = ["shp", "shx", "dbf", "prj"].map((ext) => ({
+    name: `nl_brp_rd_new.${ext}`,
+    bytes: unzipOne(zip, `nl_brp_rd_new.${ext}`),
+  }));
+  assert.equal(formatsEntry.readShapefile(parts).features.length, register.features.length);
+  assert.throws(
+    () => formatsEntry.readFieldFile(zip.subarray(0, zip.length >> 1), "cut.zip"),
+    (e) => e instanceof furrow.FurrowError && e.code === "invalid_file",
+  );
+  assert.throws(
+    () => formatsEntry.readShapefile(parts.filter((p) => !p.name.endsWith(".shp"))),
+    (e) => e instanceof furrow.FurrowError && e.code === "invalid_file" && /\.shp/.test(e.message),
+  );
+});
+
+/** A file of a zip archive, unpacked by Python's zipfile (another reader than the package's). */
+function unzipOne(zip, name) {
+  const script = "import sys, zipfile, io; sys.stdout.buffer.write(zipfile.ZipFile(io.BytesIO(sys.stdin.buffer.read())).read(sys.argv[1]))";
+  return new Uint8Array(execFileSync("python3", ["-c", script, name], { input: zip, maxBuffer: 1 << 26 }));
+}
+
 test("TypeScript definitions declare the API and export every type", () => {
   const entry = readFileSync(new URL("furrow.d.ts", pkgUrl), "utf8");
   for (const name of ["plan", "defaultOptions", "version", "initSync", "default", "Plan", "PlanOptions", "FurrowError"]) {
@@ -105,6 +153,11 @@ test("TypeScript definitions declare the API and export every type", () => {
     assert.ok(tracksExported.has(name), `tracks.d.ts exports ${name}`);
   }
   assert.match(tracksEntry, /^export default function initTracks\(/m);
+  const formatsDts = readFileSync(new URL("formats.d.ts", pkgUrl), "utf8");
+  assert.match(formatsDts, /^export default function initFormats\(/m);
+  for (const name of ["readFieldFile", "readShapefile", "initSync", "FurrowError", "FieldFileGeoJson"]) {
+    assert.ok(exportedNames(formatsDts).has(name), `formats.d.ts exports ${name}`);
+  }
   assert.doesNotMatch(entry + readFileSync(new URL("furrow.js", pkgUrl), "utf8"), /__panic|ForTests/);
   // Every option the planner knows is typed.
   for (const key of Object.keys(furrow.defaultOptions())) {

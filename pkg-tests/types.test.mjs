@@ -16,12 +16,18 @@ test("the declarations compile with tsc --strict and export every type", () => {
     [...readFileSync(join(PKG, file), "utf8").matchAll(/^export (?:interface|type) (\w+)/gm)].map((m) => m[1]);
   const types = typesOf("furrow_wasm.d.ts");
   const trackTypes = typesOf("furrow_tracks_wasm.d.ts");
+  const formatTypes = typesOf("furrow_formats_wasm.d.ts");
   assert.ok(types.length > 30 && trackTypes.length >= 3);
   writeFileSync(
     join(dir, "every-type.ts"),
     `import type * as Furrow from "furrow";\n` +
       `import type * as Tracks from "furrow/tracks";\n` +
-      `export type Every = [${[...types.map((t) => `Furrow.${t}`), ...trackTypes.map((t) => `Tracks.${t}`)].join(", ")}];\n`,
+      `import type * as Formats from "furrow/formats";\n` +
+      `export type Every = [${[
+        ...types.map((t) => `Furrow.${t}`),
+        ...trackTypes.map((t) => `Tracks.${t}`),
+        ...formatTypes.map((t) => `Formats.${t}`),
+      ].join(", ")}];\n`,
   );
   const tsc = join(ROOT, "node_modules/typescript/bin/tsc");
   const args = ["--strict", "--noEmit", "--skipLibCheck", "false", "--target", "es2022"];

@@ -5,10 +5,11 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh rust
 
-# The package holds two WebAssembly modules built from the same crate, each with one feature
-# (Cargo.toml): the planner (furrow_wasm, the package's main entry) and the shortest paths along
-# a plan's tracks (furrow_tracks_wasm, the "furrow/tracks" entry), so that a page that only plans
-# never loads the tracks' code.
+# The package holds three WebAssembly modules built from the same crate, each with one feature
+# (Cargo.toml): the planner (furrow_wasm, the package's main entry), the shortest paths along
+# a plan's tracks (furrow_tracks_wasm, the "furrow/tracks" entry) and the field files' readers
+# (furrow_formats_wasm, "furrow/formats"), so that a page that only plans never loads the
+# others' code.
 # The dependencies are optimised for size: 23 KB less gzipped (most of it the sorts that
 # i_overlay instantiates), no slower in Node within 2 % (at "z" the planner's own code plans 2.3
 # times slower, at "s" 1.4 times). The planner's own code at opt-level 2 with LLVM's inlining
@@ -36,7 +37,20 @@ build_module() { # feature, wasm-bindgen output name
 }
 build_module planner-api furrow_wasm
 build_module tracks-api furrow_tracks_wasm
-cp js/furrow.js js/furrow.d.ts js/tracks.js js/tracks.d.ts js/load.js LICENSE-MIT LICENSE-APACHE pkg/
+build_module formats-api furrow_formats_wasm
+# proj4rs compiles its own JavaScript API (Point, Projection, transform, add_nadgrid) into every
+# wasm32 module that links it. formats.js does not export it; its declarations (whose
+# [Symbol.dispose] needs TypeScript's esnext library) are taken out of the module's .d.ts.
+node -e '
+  const fs = require("fs");
+  const file = "pkg/furrow_formats_wasm.d.ts";
+  let dts = fs.readFileSync(file, "utf8");
+  dts = dts.replace(/^export class (Point|Projection) \{[^}]*\}\n/gm, "");
+  dts = dts.replace(/^export function (add_nadgrid|transform)\(.*\n/gm, "");
+  if (/export class|Symbol\.dispose/.test(dts)) throw new Error(file + ": a class of proj4rs is left");
+  fs.writeFileSync(file, dts);
+'
+cp js/furrow.js js/furrow.d.ts js/tracks.js js/tracks.d.ts js/formats.js js/formats.d.ts js/load.js LICENSE-MIT LICENSE-APACHE pkg/
 # Debian's wasm-opt (binaryen 108) produces a module that fails to load: never run it here.
 
 version=$(awk -F'"' '/^version = / { print $2; exit }' Cargo.toml)
@@ -61,11 +75,13 @@ cat > pkg/package.json <<JSON
   "exports": {
     ".": { "types": "./furrow.d.ts", "default": "./furrow.js" },
     "./tracks": { "types": "./tracks.d.ts", "default": "./tracks.js" },
+    "./formats": { "types": "./formats.d.ts", "default": "./formats.js" },
     "./furrow_wasm_bg.wasm": "./furrow_wasm_bg.wasm",
     "./furrow_tracks_wasm_bg.wasm": "./furrow_tracks_wasm_bg.wasm",
+    "./furrow_formats_wasm_bg.wasm": "./furrow_formats_wasm_bg.wasm",
     "./package.json": "./package.json"
   },
-  "files": ["furrow.js", "furrow.d.ts", "load.js", "furrow_wasm.js", "furrow_wasm.d.ts", "furrow_wasm_bg.wasm", "furrow_wasm_bg.wasm.d.ts", "tracks.js", "tracks.d.ts", "furrow_tracks_wasm.js", "furrow_tracks_wasm.d.ts", "furrow_tracks_wasm_bg.wasm", "furrow_tracks_wasm_bg.wasm.d.ts", "README.md", "LICENSE-MIT", "LICENSE-APACHE"],
+  "files": ["furrow.js", "furrow.d.ts", "load.js", "furrow_wasm.js", "furrow_wasm.d.ts", "furrow_wasm_bg.wasm", "furrow_wasm_bg.wasm.d.ts", "tracks.js", "tracks.d.ts", "furrow_tracks_wasm.js", "furrow_tracks_wasm.d.ts", "furrow_tracks_wasm_bg.wasm", "furrow_tracks_wasm_bg.wasm.d.ts", "formats.js", "formats.d.ts", "furrow_formats_wasm.js", "furrow_formats_wasm.d.ts", "furrow_formats_wasm_bg.wasm", "furrow_formats_wasm_bg.wasm.d.ts", "README.md", "LICENSE-MIT", "LICENSE-APACHE"],
   "engines": { "node": ">=18" },
   "sideEffects": false,
   "keywords": ["agriculture", "coverage path planning", "geojson", "wasm", "tractor"]
@@ -74,7 +90,7 @@ JSON
 cp js/README.md pkg/README.md
 # Gzipped as the bench measures it against the 400 KB target (Node's zlib at level 9; GNU gzip
 # comes out about 2.4 KB smaller).
-for module in furrow_wasm furrow_tracks_wasm; do
+for module in furrow_wasm furrow_tracks_wasm furrow_formats_wasm; do
   raw=$(wc -c < "pkg/${module}_bg.wasm")
   gz=$(node -e 'process.stdout.write(String(require("zlib").gzipSync(require("fs").readFileSync(process.argv[1]), { level: 9 }).length))' "pkg/${module}_bg.wasm")
   echo "[build] pkg/${module}_bg.wasm: $raw bytes, $gz gzipped (Node's zlib, level 9)"

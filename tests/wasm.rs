@@ -1,8 +1,10 @@
 //! The planner compiled to WebAssembly, run by wasm-bindgen-test in Node and in headless Chromium
 //! (`WASM_BINDGEN_USE_BROWSER=1`): the Rust API on every corpus field, and the JavaScript API
-//! (`plan` as JavaScript calls it, errors as JavaScript sees them).
+//! (`plan` as JavaScript calls it, errors as JavaScript sees them), the tracks' and the field
+//! files' entry points.
 #![cfg(target_arch = "wasm32")]
 
+use furrow::bindings::formats::{read_field_file_text, read_shapefile_text};
 use furrow::bindings::plan::{default_options, plan_js, version};
 use furrow::bindings::tracks::{shortest_path_js, TrackGraphJs};
 use furrow::{plan_geojson, PlanOptions};
@@ -204,4 +206,47 @@ fn js_api_finds_the_way_along_the_tracks() {
         .map(|_| ())
         .expect_err("refused");
     assert_eq!(get(&e, "code"), "invalid_option");
+}
+
+#[wasm_bindgen_test]
+fn js_api_reads_a_zipped_shapefile_in_rd_new() {
+    let zip = include_bytes!("format-fixtures/nl_brp_rd_new.zip");
+    let text = read_field_file_text(zip, "nl_brp_rd_new.zip").expect("reads");
+    let file = JSON::parse(&text).expect("GeoJSON");
+    let features = js_sys::Array::from(&get(&file, "features"));
+    assert_eq!(features.length(), 53);
+    assert_eq!(
+        get(&get(&file, "source"), "crs").as_string().as_deref(),
+        Some("EPSG:28992 (Amersfoort / RD New)")
+    );
+    // The first corner, as the register has it (4.5793265, 52.1158312; GDAL wrote it in RD
+    // New): within 1e-7 degrees, a centimetre.
+    let corner = JSON::stringify(&get(&get(&features.get(0), "geometry"), "coordinates"))
+        .ok()
+        .and_then(|s| s.as_string())
+        .unwrap_or_default();
+    let first: Vec<f64> = corner
+        .trim_start_matches('[')
+        .split(']')
+        .next()
+        .unwrap_or_default()
+        .split(',')
+        .filter_map(|x| x.parse().ok())
+        .collect();
+    assert!(
+        (first[0] - 4.5793265).abs() < 1e-7 && (first[1] - 52.1158312).abs() < 1e-7,
+        "{first:?}"
+    );
+    // A cut archive, and parts without their .shp: FurrowErrors with the code invalid_file.
+    for e in [
+        read_field_file_text(&zip[..zip.len() / 2], "cut.zip").expect_err("cut"),
+        read_shapefile_text(
+            vec!["a.prj".into()],
+            js_sys::Array::of1(&js_sys::Uint8Array::from(&b"GEOGCS"[..])),
+        )
+        .expect_err("no .shp"),
+    ] {
+        assert_eq!(get(&e, "code").as_string().as_deref(), Some("invalid_file"));
+        assert_eq!(get(&e, "name").as_string().as_deref(), Some("FurrowError"));
+    }
 }

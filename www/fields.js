@@ -6,7 +6,7 @@ import { sentence } from "./notes.js";
 import { initPlanner, readFile } from "./planner.js";
 import { forgetParcels, parcelFeatures, parcelFile, showParcels } from "./parcels.js";
 import { replan, showFailure } from "./planning.js";
-import { sizeError } from "./reading.js";
+import { readLimit, sizeError } from "./reading.js";
 import { fieldParts, fieldScene, inputFeatures, parseForDrawing, projectFeature, projectionFor } from "./scene.js";
 import { applySuggested, forgetFieldReferences } from "./settings.js";
 
@@ -33,8 +33,9 @@ export function bindDrop(map) {
     map.classList.remove("drop-target");
     if (!hasFiles(e)) return;
     e.preventDefault();
-    const file = e.dataTransfer.files?.[0];
-    if (file) openFile(file);
+    // One file, or a Shapefile's parts (.shp, .shx, .dbf, .prj) dropped together.
+    const files = [...(e.dataTransfer.files ?? [])];
+    if (files.length) openFile(files.length === 1 ? files[0] : files);
   });
   for (const type of ["dragover", "drop"]) {
     window.addEventListener(type, (e) => {
@@ -46,21 +47,28 @@ export function bindDrop(map) {
 }
 
 /**
- * Reads a file and plans it as it is. The planner's worker reads it (reading.js): a file larger
+ * Reads a file (or a Shapefile's parts, several files) and plans it as it is. The planner's
+ * worker reads it (reading.js: a zipped Shapefile converted to GeoJSON there): a file larger
  * than the planner reads is refused before it is read, and one with more points than it accepts
  * once it is parsed there, so the page never holds up on it.
  */
-export async function openFile(file) {
-  const name = file.name.replace(/\.(geo)?json$/i, "") || file.name;
+export async function openFile(input) {
+  const files = Array.isArray(input) ? input : [input];
+  const first = files.find((f) => /\.shp$/i.test(f.name)) ?? files[0];
+  const name = first.name.replace(/\.((geo)?json|zip|shp)$/i, "") || first.name;
   const token = ++state.loadToken;
-  const tooLarge = sizeError(file.name, file.size);
+  const tooLarge = sizeError(
+    files.map((f) => f.name).join(", "),
+    files.reduce((n, f) => n + f.size, 0),
+    readLimit(files),
+  );
   if (tooLarge) {
     showFileFailure(name, tooLarge);
     return;
   }
   setPlanState("loading");
-  ui.status.textContent = `Reading ${file.name}…`;
-  const read = await readFile(file);
+  ui.status.textContent = `Reading ${files.map((f) => f.name).join(", ")}…`;
+  const read = await readFile(input);
   if (token !== state.loadToken) return; // another field was chosen meanwhile
   if (read.error) showFileFailure(name, read.error);
   else await loadField(read.text, name, { read });

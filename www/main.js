@@ -168,9 +168,9 @@ function bindControls() {
   });
   ui.open.addEventListener("click", () => ui.file.click());
   ui.file.addEventListener("change", () => {
-    const file = ui.file.files?.[0];
+    const files = [...(ui.file.files ?? [])];
     ui.file.value = ""; // so that opening the same file again (after fixing it) reloads it
-    if (file) openFile(file);
+    if (files.length) openFile(files.length === 1 ? files[0] : files);
   });
   bindDrop(document.querySelector(".map"));
   // A bearing typed is a fixed direction; cleared, the search again.

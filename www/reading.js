@@ -1,7 +1,9 @@
 // Reading a field file within the planner's limits, before anything of it is drawn or planned:
 // its size is checked before it is read, its points counted before it is parsed. The page hands
 // the file to the planner's worker (worker.js), which reads it there, so that a large file never
-// holds up the page; only where there is no worker is it read in the page.
+// holds up the page; only where there is no worker is it read in the page. A zipped Shapefile
+// (or a Shapefile's parts together) is converted to the field's GeoJSON by the package's
+// furrow/formats module, loaded the first time one is opened.
 
 import { parseForDrawing } from "./scene.js";
 
@@ -10,13 +12,28 @@ export const MAX_INPUT_BYTES = 32 * 1024 * 1024;
 /** And at most this many points (MAX_VERTICES in src/field/validate.rs). */
 export const MAX_VERTICES = 200_000;
 
-/** The planner's error for input of `bytes` bytes when that is more than it reads, else null. */
-export function sizeError(name, bytes) {
-  if (!(bytes > MAX_INPUT_BYTES)) return null;
+/** The largest file of another format read (MAX_FILE_BYTES in src/formats/mod.rs). */
+export const MAX_FILE_BYTES = 64 * 1024 * 1024;
+
+/** Whether files are a field file of another format than GeoJSON: a zipped Shapefile, or a
+ * Shapefile's parts. */
+export function isConverted(files) {
+  return files.length > 1 || /\.(zip|shp|shx|dbf|prj|cpg)$/i.test(files[0]?.name ?? "");
+}
+
+/** The most bytes read of these files. */
+export function readLimit(files) {
+  return isConverted(files) ? MAX_FILE_BYTES : MAX_INPUT_BYTES;
+}
+
+/** The planner's error for input of `bytes` bytes when that is more than it reads (`limit`),
+ * else null. */
+export function sizeError(name, bytes, limit = MAX_INPUT_BYTES) {
+  if (!(bytes > limit)) return null;
   const mb = (v) => Math.round(v / (1024 * 1024));
   return {
     code: "input_too_large",
-    message: `the file ${name} is ${mb(bytes)} MB; the planner reads at most ${mb(MAX_INPUT_BYTES)} MB: simplify the outlines`,
+    message: `the file ${name} is ${mb(bytes)} MB; the planner reads at most ${mb(limit)} MB: simplify the outlines`,
   };
 }
 
@@ -37,9 +54,12 @@ export function readFieldText(text) {
   return { text, field: parseForDrawing(text) };
 }
 
-/** Reads a File (or Blob), its size checked first, and checks it as readFieldText does; never
- * rejects. */
+/** Reads a File (or Blob), its size checked first, and checks it as readFieldText does; a
+ * zipped Shapefile, or a Shapefile's parts (an array of Files), converted to GeoJSON first.
+ * Never rejects. */
 export async function readFieldFile(file) {
+  const files = Array.isArray(file) ? file : [file];
+  if (isConverted(files)) return readConverted(files);
   const name = typeof file?.name === "string" && file.name ? file.name : "the file";
   const tooLarge = sizeError(name, file?.size);
   if (tooLarge) return { error: tooLarge };
@@ -50,6 +70,51 @@ export async function readFieldFile(file) {
     return { error: { code: "file_unreadable", message: `the file ${name} could not be read: ${e?.message ?? e}` } };
   }
   return readFieldText(text);
+}
+
+/** A Shapefile (zipped, or its parts) as the field's GeoJSON, checked as readFieldText does. */
+async function readConverted(files) {
+  const names = files.map((f) => (typeof f?.name === "string" ? f.name : "")).join(", ");
+  const tooLarge = sizeError(names, files.reduce((n, f) => n + (f?.size ?? 0), 0), MAX_FILE_BYTES);
+  if (tooLarge) return { error: tooLarge };
+  let formats;
+  try {
+    formats = await loadFormats();
+  } catch (e) {
+    return { error: { code: "not_initialised", message: `the Shapefile reader could not be loaded: ${e?.message ?? e}` } };
+  }
+  let bytes;
+  try {
+    bytes = await Promise.all(files.map(async (f) => new Uint8Array(await f.arrayBuffer())));
+  } catch (e) {
+    return { error: { code: "file_unreadable", message: `the file ${names} could not be read: ${e?.message ?? e}` } };
+  }
+  try {
+    const zipped = files.length === 1 && /\.zip$/i.test(files[0].name ?? "");
+    const geojson = zipped
+      ? formats.readFieldFile(bytes[0], files[0].name)
+      : formats.readShapefile(files.map((f, i) => ({ name: f.name, bytes: bytes[i] })));
+    return readFieldText(JSON.stringify(geojson));
+  } catch (e) {
+    return { error: { code: e?.code ?? "invalid_file", message: String(e?.message ?? e) } };
+  }
+}
+
+let formatsModule = null; // furrow/formats, once loaded
+
+/** The package's readers of field files, loaded on first use. */
+function loadFormats() {
+  formatsModule ??= import("./pkg/formats.js").then(
+    async (module) => {
+      await module.default();
+      return module;
+    },
+    (e) => {
+      formatsModule = null; // asked again, it tries again
+      throw e;
+    },
+  );
+  return formatsModule;
 }
 
 /**

@@ -31,6 +31,7 @@ import initTracks, {
   type TrackPathOptions,
   type Turning,
 } from "furrow/tracks";
+import initFormats, { readFieldFile, readShapefile, type FieldFileGeoJson } from "furrow/formats";
 
 export async function load(bytes?: Uint8Array): Promise<string> {
   if (bytes) initSync({ module: bytes });
@@ -78,3 +79,11 @@ export function describe(e: unknown): string {
 export const refused: FurrowError = new TracksError("no way out", { code: "no_path" });
 export const oneCall = (result: Plan, from: Position, to: Position[]): TrackPathFeature =>
   shortestPath(result, from, 90, to);
+
+/** The first parcel of a zipped Shapefile, planned; or of its parts dropped together. */
+export async function planFirstParcel(zip: Uint8Array, parts?: { name: string; bytes: Uint8Array }[]): Promise<Plan> {
+  await initFormats();
+  const file: FieldFileGeoJson = parts ? readShapefile(parts) : readFieldFile(zip, "fields.zip");
+  const crs: string = file.source.crs;
+  return plan(file.features[0], { width: 6, headlandPasses: crs.startsWith("EPSG") ? 2 : 1 });
+}

@@ -1,9 +1,10 @@
 //! The JavaScript API of the WebAssembly package. All wasm-bindgen code lives here; the planner
-//! itself knows nothing of JavaScript. The package has two modules, each built from this crate
-//! with one feature, so that a page that only plans never loads the tracks' code:
+//! itself knows nothing of JavaScript. The package has three modules, each built from this crate
+//! with one feature, so that a page that only plans never loads the tracks' or the readers' code:
 //!
 //! - `planner-api` ([`plan`]): `plan`, `defaultOptions`, `version` (the package's `furrow` entry);
-//! - `tracks-api` ([`tracks`]): `TrackGraph`, `shortestPath` (its `furrow/tracks` entry).
+//! - `tracks-api` ([`tracks`]): `TrackGraph`, `shortestPath` (its `furrow/tracks` entry);
+//! - `formats-api` ([`formats`]): `readFieldFile`, `readShapefile` (its `furrow/formats` entry).
 //!
 //! ```js
 //! import init, { plan } from "furrow";
@@ -14,6 +15,8 @@
 //! Errors are thrown as `Error` objects with `name` `"FurrowError"` and a stable `code`, plus
 //! `feature`, `ring`, `vertex` and `coordinate` where the problem has a place in the input.
 
+#[cfg(feature = "formats-api")]
+pub mod formats;
 #[cfg(feature = "planner-api")]
 pub mod plan;
 #[cfg(feature = "tracks-api")]

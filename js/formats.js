@@ -1,0 +1,50 @@
+// furrow/formats: field files read into the GeoJSON the planner takes (zipped Shapefiles, or
+// their parts dropped together), a WebAssembly module of its own (furrow_formats_wasm.js)
+// loaded with its own init, so that a page that only plans GeoJSON never loads the readers.
+// Loading, errors and recovery as the planner's (load.js).
+import * as core from "./furrow_formats_wasm.js";
+import { loader } from "./load.js";
+
+export { FurrowError } from "./load.js";
+
+const formats = loader(core, {
+  what: "furrow/formats",
+  // Literal, so that bundlers find the .wasm and rewrite the URL to their copy.
+  wasmUrl: () => new URL("furrow_formats_wasm_bg.wasm", import.meta.url),
+  entry: "furrow/formats",
+  initName: "initFormats",
+});
+
+/**
+ * Loads the readers' module: in a browser or worker it fetches furrow_formats_wasm_bg.wasm
+ * beside this file (or what `input` names); in Node it reads that file.
+ */
+export default formats.init;
+/** Loads the readers' module synchronously (as the planner's initSync). */
+export const initSync = formats.initSync;
+
+const readText = formats.guarded("readFieldFileText");
+const readPartsText = formats.guarded("readShapefileText");
+
+/** The parcels of a field file (a zipped Shapefile): see formats.d.ts. */
+export function readFieldFile(bytes, name = "") {
+  return JSON.parse(readText(asBytes(bytes), String(name)));
+}
+
+/** The parcels of a Shapefile given as its files (.shp, .shx, .dbf, .prj): see formats.d.ts. */
+export function readShapefile(files) {
+  const list = Array.from(files ?? []);
+  return JSON.parse(
+    readPartsText(
+      list.map((f) => String(f?.name ?? "")),
+      list.map((f) => asBytes(f?.bytes)),
+    ),
+  );
+}
+
+function asBytes(b) {
+  if (b instanceof Uint8Array) return b;
+  if (b instanceof ArrayBuffer) return new Uint8Array(b);
+  if (ArrayBuffer.isView(b)) return new Uint8Array(b.buffer, b.byteOffset, b.byteLength);
+  return new Uint8Array(0);
+}

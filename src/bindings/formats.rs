@@ -1,0 +1,50 @@
+//! The field files' entry point (`furrow/formats`): zipped Shapefiles (or their parts dropped
+//! together) read into the field's GeoJSON, in a module of its own so that a page that only
+//! plans GeoJSON never loads the readers and projections.
+//!
+//! ```js
+//! import initFormats, { readFieldFile } from "furrow/formats";
+//! await initFormats();
+//! const field = readFieldFile(new Uint8Array(await file.arrayBuffer()), file.name);
+//! ```
+
+use super::to_js_error;
+use crate::error::{ErrorCode, PlanError};
+use crate::formats::{read_field_file, read_shapefile_files};
+use wasm_bindgen::prelude::*;
+
+#[wasm_bindgen(typescript_custom_section)]
+const TYPESCRIPT: &'static str = include_str!("formats.d.ts");
+
+/// The parcels of a field file (its bytes and name), as GeoJSON text: see `formats.d.ts`.
+#[wasm_bindgen(js_name = readFieldFileText, skip_typescript)]
+pub fn read_field_file_text(bytes: &[u8], name: &str) -> Result<String, JsValue> {
+    read_field_file(bytes, name)
+        .map(|f| f.to_geojson_string())
+        .map_err(|e| to_js_error(&e))
+}
+
+/// The parcels of a Shapefile given as its files (`names[i]` and `contents[i]`, each a
+/// `Uint8Array`), as GeoJSON text.
+#[wasm_bindgen(js_name = readShapefileText, skip_typescript)]
+pub fn read_shapefile_text(names: Vec<String>, contents: js_sys::Array) -> Result<String, JsValue> {
+    let bytes: Vec<Vec<u8>> = contents
+        .iter()
+        .map(|c| js_sys::Uint8Array::new(&c).to_vec())
+        .collect();
+    if bytes.len() != names.len() {
+        let e = PlanError::new(
+            ErrorCode::InvalidFile,
+            "each file needs its name and its bytes",
+        );
+        return Err(to_js_error(&e));
+    }
+    let files: Vec<(&str, &[u8])> = names
+        .iter()
+        .map(String::as_str)
+        .zip(bytes.iter().map(Vec::as_slice))
+        .collect();
+    read_shapefile_files(&files)
+        .map(|f| f.to_geojson_string())
+        .map_err(|e| to_js_error(&e))
+}
