@@ -11,7 +11,7 @@
 //! input. The plan (GeoJSON) goes to standard output unless `--out` names a file.
 //!
 //! `FIELD` may also be a zipped Shapefile (`.zip` with `.shp`, `.shx`, `.dbf`, `.prj`), read and
-//! converted to WGS84 by `furrow::formats`. A file of several parcels (a register's export, as
+//! converted to WGS84 by `furrow::formats`, or KML or KMZ. A file of several parcels (a register's export, as
 //! a Shapefile or GeoJSON) is planned one parcel at a time: `--parcel INDEX` picks one (0 for
 //! the first). `--field-only` prints the field as read (GeoJSON, all its parcels or the one
 //! picked) instead of planning it.
@@ -33,7 +33,7 @@
 #![allow(clippy::result_large_err)] // the error path of a command-line tool
 
 use furrow::field::geojson::MAX_INPUT_BYTES;
-use furrow::formats::{read_field_file, MAX_FILE_BYTES};
+use furrow::formats::{is_field_file, read_field_file, MAX_FILE_BYTES};
 use furrow::options::OPTION_DOCS;
 use furrow::tracks::{PlanTracks, Turning};
 use furrow::{plan_geojson, ErrorCode, PlanError, PlanOptions};
@@ -42,7 +42,7 @@ use std::io::{Read, Write};
 use std::process::ExitCode;
 
 const USAGE: &str =
-    "usage: plan FIELD.geojson|FIELD.zip [--parcel INDEX] [--OPTION VALUE ...] [--out PLAN.geojson] [--pretty] [--summary] [--field-only]";
+    "usage: plan FIELD.geojson|.zip|.kml|.kmz [--parcel INDEX] [--OPTION VALUE ...] [--out PLAN.geojson] [--pretty] [--summary] [--field-only]";
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -414,12 +414,12 @@ fn kebab_message(message: &str) -> String {
 /// Reads the field's text from the file `path` names, or from standard input (`-`): at most
 /// [`MAX_INPUT_BYTES`] and one byte more, so that an input too large is refused without reading
 /// it all. Text that is too large or not UTF-8 is the input's fault (exit 2), not the file's.
-/// The field file `path` names as GeoJSON text: GeoJSON as it is, a zipped Shapefile read into
-/// GeoJSON; with `parcel`, only that parcel of the file (a feature of a FeatureCollection).
+/// The field file `path` names as GeoJSON text: GeoJSON as it is, a zipped Shapefile, KML or
+/// KMZ read into GeoJSON; with `parcel`, only that parcel of the file (a feature of a FeatureCollection).
 /// A Shapefile of several parcels is refused without `parcel` unless `all` are asked for.
 fn read_field(path: &str, parcel: Option<usize>, all: bool) -> Result<String, Failure> {
     let bytes = read_input(path)?;
-    let mut geojson = if bytes.starts_with(b"PK") {
+    let mut geojson = if is_field_file(&bytes) {
         let file = read_field_file(&bytes, path).map_err(Failure::Invalid)?;
         let count = file.parcels.len();
         if count > 1 && parcel.is_none() && !all {
@@ -483,7 +483,7 @@ fn read_input(path: &str) -> Result<Vec<u8>, Failure> {
         .read_to_end(&mut bytes)
         .map_err(io)?;
     if bytes.len() > MAX_INPUT_BYTES {
-        if !bytes.starts_with(b"PK") {
+        if !is_field_file(&bytes) {
             return Err(too_large(&format!(
                 "more than {} MB",
                 MAX_INPUT_BYTES / (1024 * 1024)
@@ -539,7 +539,7 @@ fn print_help() {
         env!("CARGO_PKG_VERSION")
     );
     println!("{USAGE}\n");
-    println!("FIELD is GeoJSON (a FeatureCollection with roles, a Feature or a Polygon) or a zipped Shapefile (.zip with .shp, .shx, .dbf, .prj); - reads standard input.\n");
+    println!("FIELD is GeoJSON (a FeatureCollection with roles, a Feature or a Polygon) a zipped Shapefile (.zip with .shp, .shx, .dbf, .prj), KML or KMZ; - reads standard input.\n");
     println!("  --{:<22} {:<13} the parcel to plan of a file of several (a register's export), 0 for the first", "parcel", "<index>");
     println!(
         "  --{:<22} {:<13} print the field as read (GeoJSON in WGS84) instead of planning it\n",

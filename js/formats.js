@@ -1,5 +1,5 @@
-// furrow/formats: field files read into the GeoJSON the planner takes (zipped Shapefiles, or
-// their parts dropped together), a WebAssembly module of its own (furrow_formats_wasm.js)
+// furrow/formats: field files read into the GeoJSON the planner takes (zipped Shapefiles or
+// their parts dropped together, KML, KMZ), a WebAssembly module of its own (furrow_formats_wasm.js)
 // loaded with its own init, so that a page that only plans GeoJSON never loads the readers.
 // Loading, errors and recovery as the planner's (load.js).
 import * as core from "./furrow_formats_wasm.js";
@@ -26,7 +26,7 @@ export const initSync = formats.initSync;
 const readText = formats.guarded("readFieldFileText");
 const readPartsText = formats.guarded("readShapefileText");
 
-/** The parcels of a field file (a zipped Shapefile): see formats.d.ts. */
+/** The parcels of a field file (a zipped Shapefile, KML or KMZ): see formats.d.ts. */
 export function readFieldFile(bytes, name = "") {
   return JSON.parse(readText(asBytes(bytes), String(name)));
 }

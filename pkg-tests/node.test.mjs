@@ -118,6 +118,11 @@ test("furrow/formats reads a zipped Shapefile (RD New) to the register's parcels
     () => formatsEntry.readFieldFile(zip.subarray(0, zip.length >> 1), "cut.zip"),
     (e) => e instanceof furrow.FurrowError && e.code === "invalid_file",
   );
+  // KMZ (GDAL's KML, zipped): the Danish parcels by their names.
+  const kmz = formatsEntry.readFieldFile(readFileSync(new URL("dk_marker.kmz", fixturesUrl)), "dk_marker.kmz");
+  assert.equal(kmz.source.format, "kmz");
+  const danish = readField("real/dk_marker_2026_sample.geojson");
+  assert.deepEqual(kmz.features.map((f) => f.properties.name), danish.features.map((f) => f.properties.id));
   assert.throws(
     () => formatsEntry.readShapefile(parts.filter((p) => !p.name.endsWith(".shp"))),
     (e) => e instanceof furrow.FurrowError && e.code === "invalid_file" && /\.shp/.test(e.message),

@@ -36,6 +36,22 @@ with zipfile.ZipFile(dst, "w", zipfile.ZIP_DEFLATED) as z:
 PY
 }
 
+# kml SOURCE NAME: SOURCE's parcels as NAME.kml (GDAL's KML driver, each placemark named by
+# the parcel's id, the other properties as extended data) and as NAME.kmz (that file zipped as
+# doc.kml, as Google Earth does).
+kml() {
+  local source=$1 name=$2
+  rm -f "$out/$name.kml" "$out/$name.kmz"
+  ogr2ogr -f KML -dsco NameField=id "$out/$name.kml" "$source"
+  python3 - "$out/$name.kml" "$out/$name.kmz" <<'PY'
+import sys, zipfile
+with zipfile.ZipFile(sys.argv[2], "w", zipfile.ZIP_DEFLATED) as z:
+    info = zipfile.ZipInfo("doc.kml", date_time=(2026, 1, 1, 0, 0, 0))
+    info.compress_type = zipfile.ZIP_DEFLATED
+    z.writestr(info, open(sys.argv[1], "rb").read())
+PY
+}
+
 shapefile "$real/nl_brp_2023_sample.geojson" nl_brp_rd_new EPSG:28992
 shapefile "$real/nl_brp_2023_sample.geojson" nl_brp_wgs84 EPSG:4326
 shapefile "$real/nl_brp_2023_sample.geojson" nl_brp_wgs84_no_prj EPSG:4326 drop
@@ -43,4 +59,5 @@ shapefile "$real/dk_marker_2026_sample.geojson" dk_marker_etrs89_utm32n EPSG:258
 shapefile "$real/dk_marker_2026_sample.geojson" dk_marker_wgs84_utm32n EPSG:32632
 shapefile "$real/dk_marker_2026_sample.geojson" dk_marker_tm35fin EPSG:3067
 shapefile "$real/dk_marker_2026_sample.geojson" dk_marker_utm32n_no_prj EPSG:25832 drop
+kml "$real/dk_marker_2026_sample.geojson" dk_marker
 ls -l "$out"

@@ -2,8 +2,9 @@
 //! `scripts/format-fixtures.sh`) from the register parcels of `tests/fields/real/`, in the
 //! national grids of their registers (RD New for the Netherlands with ESRI's `.prj`, which
 //! names no datum shift; ETRS89 / UTM 32N for Denmark and Germany; TM35FIN for Finland), in
-//! UTM on WGS84 and in WGS84, give the parcels' polygons within a centimetre. Damaged and
-//! unknown files give typed errors, and no file panics the reader.
+//! UTM on WGS84 and in WGS84, and KML and KMZ written by GDAL too, give the parcels' polygons
+//! within a centimetre. Damaged and unknown files give typed errors, and no file panics the
+//! reader.
 
 #![cfg(feature = "formats")]
 #![allow(clippy::result_large_err)] // the planner's error, as every public function returns it
@@ -18,7 +19,11 @@ const FIXTURES: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/format-fixtur
 const REAL: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/fields/real");
 
 fn fixture(name: &str) -> Vec<u8> {
-    std::fs::read(format!("{FIXTURES}/{name}.zip")).unwrap()
+    fixture_file(&format!("{name}.zip"))
+}
+
+fn fixture_file(file: &str) -> Vec<u8> {
+    std::fs::read(format!("{FIXTURES}/{file}")).unwrap()
 }
 
 /// The parcels' rings as the register's GeoJSON has them: `[parcel][ring][vertex]`.
@@ -98,8 +103,12 @@ fn assert_same_parcels(fixture_name: &str, register_name: &str, crs: &str) {
     let file = read_field_file(&fixture(fixture_name), &format!("{fixture_name}.zip")).unwrap();
     assert_eq!(file.format, "shapefile");
     assert_eq!(file.crs, crs, "{fixture_name}");
+    assert_same_as_register(&file, fixture_name, register_name);
+}
+
+fn assert_same_as_register(file: &FieldFile, fixture_name: &str, register_name: &str) {
     let expected = register(register_name);
-    let got = read_back(&file);
+    let got = read_back(file);
     assert_eq!(got.len(), expected.len(), "{fixture_name}: parcels");
     for (i, (g, e)) in got.iter().zip(&expected).enumerate() {
         let d = vertex_distance(g, e);
@@ -167,6 +176,19 @@ fn the_attributes_come_with_each_parcel() {
     // dBase names are at most 10 characters: ogr2ogr cut `src_Afgroede` short.
     assert_eq!(first["src_Afgroe"], "Poppel");
     assert_eq!(first["area_ha"], 4.0399);
+}
+
+#[test]
+fn kml_and_kmz_read_back_the_parcels_with_their_names() {
+    for (file_name, format) in [("dk_marker.kml", "kml"), ("dk_marker.kmz", "kmz")] {
+        let file = read_field_file(&fixture_file(file_name), file_name).unwrap();
+        assert_eq!(file.format, format);
+        assert_eq!(file.crs, "EPSG:4326 (WGS 84)");
+        assert_same_as_register(&file, file_name, "dk_marker_2026_sample");
+        let first = &file.parcels[0].properties;
+        assert_eq!(first["name"], "dk_marker_2026_sample_000");
+        assert_eq!(first["src_Afgroede"], "Poppel");
+    }
 }
 
 /// The fixture's files (unzipped) but those whose name ends in one of `leave_out`.
@@ -253,6 +275,26 @@ proptest! {
         }
         let keep = (zip.len() as f64 * cut) as usize;
         if let Err(e) = read_field_file(&zip[..keep.max(2)], "x.zip") {
+            prop_assert_ne!(e.code, ErrorCode::Internal);
+        }
+    }
+
+    /// KML with bytes changed or cut off reads or gives a typed error (and returns: the `kml`
+    /// crate never returns on some files cut short).
+    #[test]
+    fn a_damaged_kml_never_panics(
+        cut in 0.0..1.0f64,
+        changes in prop::collection::vec((0.0..1.0f64, prop::sample::select(b"<>/\"= a1.,-".to_vec())), 0..8),
+    ) {
+        let mut kml = fixture_file("dk_marker.kml");
+        kml.truncate(60_000);
+        kml.extend_from_slice(b"</Folder></Document></kml>");
+        for (at, byte) in changes {
+            let i = ((kml.len() - 1) as f64 * at) as usize;
+            kml[i] = byte;
+        }
+        let keep = (kml.len() as f64 * cut) as usize;
+        if let Err(e) = read_field_file(&kml[..keep.max(5)], "x.kml") {
             prop_assert_ne!(e.code, ErrorCode::Internal);
         }
     }

@@ -2,8 +2,8 @@
 // its size is checked before it is read, its points counted before it is parsed. The page hands
 // the file to the planner's worker (worker.js), which reads it there, so that a large file never
 // holds up the page; only where there is no worker is it read in the page. A zipped Shapefile
-// (or a Shapefile's parts together) is converted to the field's GeoJSON by the package's
-// furrow/formats module, loaded the first time one is opened.
+// (or a Shapefile's parts together), KML or KMZ is converted to the field's GeoJSON by the
+// package's furrow/formats module, loaded the first time one is opened.
 
 import { parseForDrawing } from "./scene.js";
 
@@ -15,10 +15,10 @@ export const MAX_VERTICES = 200_000;
 /** The largest file of another format read (MAX_FILE_BYTES in src/formats/mod.rs). */
 export const MAX_FILE_BYTES = 64 * 1024 * 1024;
 
-/** Whether files are a field file of another format than GeoJSON: a zipped Shapefile, or a
- * Shapefile's parts. */
+/** Whether files are a field file of another format than GeoJSON: a zipped Shapefile, KML or
+ * KMZ, or a Shapefile's parts. */
 export function isConverted(files) {
-  return files.length > 1 || /\.(zip|shp|shx|dbf|prj|cpg)$/i.test(files[0]?.name ?? "");
+  return files.length > 1 || /\.(zip|kml|kmz|shp|shx|dbf|prj|cpg)$/i.test(files[0]?.name ?? "");
 }
 
 /** The most bytes read of these files. */
@@ -72,7 +72,8 @@ export async function readFieldFile(file) {
   return readFieldText(text);
 }
 
-/** A Shapefile (zipped, or its parts) as the field's GeoJSON, checked as readFieldText does. */
+/** A Shapefile (zipped, or its parts), KML or KMZ as the field's GeoJSON, checked as
+ * readFieldText does. */
 async function readConverted(files) {
   const names = files.map((f) => (typeof f?.name === "string" ? f.name : "")).join(", ");
   const tooLarge = sizeError(names, files.reduce((n, f) => n + (f?.size ?? 0), 0), MAX_FILE_BYTES);
@@ -90,8 +91,8 @@ async function readConverted(files) {
     return { error: { code: "file_unreadable", message: `the file ${names} could not be read: ${e?.message ?? e}` } };
   }
   try {
-    const zipped = files.length === 1 && /\.zip$/i.test(files[0].name ?? "");
-    const geojson = zipped
+    const whole = files.length === 1 && /\.(zip|kml|kmz)$/i.test(files[0].name ?? "");
+    const geojson = whole
       ? formats.readFieldFile(bytes[0], files[0].name)
       : formats.readShapefile(files.map((f, i) => ({ name: f.name, bytes: bytes[i] })));
     return readFieldText(JSON.stringify(geojson));

@@ -3,7 +3,7 @@
 export interface FieldFileGeoJson {
   type: "FeatureCollection";
   /** What was read: the format and the coordinate system converted from. */
-  source: { format: "shapefile"; crs: string };
+  source: { format: "shapefile" | "kml" | "kmz"; crs: string };
   features: Array<{
     type: "Feature";
     properties: Record<string, string | number | boolean>;

@@ -1,5 +1,5 @@
 //! The field files' entry point (`furrow/formats`): zipped Shapefiles (or their parts dropped
-//! together) read into the field's GeoJSON, in a module of its own so that a page that only
+//! together), KML and KMZ read into the field's GeoJSON, in a module of its own so that a page that only
 //! plans GeoJSON never loads the readers and projections.
 //!
 //! ```js

@@ -1,16 +1,18 @@
 //! Fields from the files farm software exports, read into the GeoJSON the planner takes.
 //!
 //! A field lives in a farm management system or a terminal, not in GeoJSON: most export zipped
-//! Shapefiles. [`read_field_file`] takes such a file's bytes and gives its parcels, each a
+//! Shapefiles, Google Earth KML and KMZ. [`read_field_file`] takes such a file's bytes and gives its parcels, each a
 //! polygon in WGS84 longitude and latitude with its attributes, as a GeoJSON FeatureCollection
 //! ([`FieldFile::to_geojson_string`]): a file of one parcel plans as it is, a file of several
 //! is a register's export to pick one from (the viewer lists them; the CLI's `--parcel`).
 //!
 //! - [`zip`]: the files of a zip archive.
 //! - [`shapefile`]: the parcels of a Shapefile.
+//! - [`kml`]: the parcels of KML (and of KMZ, a zip of it).
 //! - [`crs`]: the coordinate systems they come in, converted to WGS84.
 
 pub mod crs;
+pub mod kml;
 pub mod shapefile;
 pub mod zip;
 
@@ -39,20 +41,28 @@ pub struct Parcel {
 pub struct FieldFile {
     /// Its parcels, in the file's order.
     pub parcels: Vec<Parcel>,
-    /// The format read: `"shapefile"`.
+    /// The format read: `"shapefile"`, `"kml"` or `"kmz"`.
     pub format: &'static str,
     /// The coordinate system the file was in, converted from: `"EPSG:28992 (Amersfoort / RD New)"`.
     pub crs: String,
 }
 
 /// The parcels of a field file: a zipped Shapefile (`.zip` holding `.shp`, `.shx`, `.dbf`
-/// and `.prj`). `name` is the file's name, for the format where its bytes do not tell.
+/// and `.prj`), KML or KMZ. `name` is the file's name, for messages.
 ///
 /// ```
 /// use furrow::formats::read_field_file;
 ///
-/// let e = read_field_file(b"<kml/>", "fields.kml").unwrap_err();
+/// let kml = br#"<kml xmlns="http://www.opengis.net/kml/2.2"><Placemark><name>North</name>
+///   <Polygon><outerBoundaryIs><LinearRing><coordinates>24.05,60.25 24.056,60.25
+///   24.056,60.252 24.05,60.25</coordinates></LinearRing></outerBoundaryIs></Polygon>
+///   </Placemark></kml>"#;
+/// let file = read_field_file(kml, "fields.kml")?;
+/// assert_eq!(file.format, "kml");
+/// assert_eq!(file.parcels[0].properties["name"], "North");
+/// let e = read_field_file(b"TASKDATA", "TASKDATA.XML").unwrap_err();
 /// assert_eq!(e.code, furrow::ErrorCode::InvalidFile);
+/// # Ok::<(), furrow::PlanError>(())
 /// ```
 pub fn read_field_file(bytes: &[u8], name: &str) -> Result<FieldFile, PlanError> {
     if bytes.len() > MAX_FILE_BYTES {
@@ -71,24 +81,75 @@ pub fn read_field_file(bytes: &[u8], name: &str) -> Result<FieldFile, PlanError>
             .iter()
             .map(|f| (f.path.as_str(), f.bytes.as_slice()))
             .collect();
+        let kml = named.iter().find(|(p, _)| has_extension(p, ".kml"));
+        if let (Some(&(_, text)), false) =
+            (kml, named.iter().any(|(p, _)| has_extension(p, ".shp")))
+        {
+            return read_kml_file(text, "kmz");
+        }
         return read_shapefile_files(&named);
+    }
+    if is_kml(bytes) {
+        return read_kml_file(bytes, "kml");
     }
     Err(PlanError::new(
         ErrorCode::InvalidFile,
         format!(
-            "{name} is not a file furrow reads: a field is GeoJSON or a zipped Shapefile (.zip with .shp, .shx, .dbf and .prj)"
+            "{name} is not a file furrow reads: a field is GeoJSON, KML or KMZ, or a zipped Shapefile (.zip with .shp, .shx, .dbf and .prj)"
         ),
     ))
+}
+
+/// Whether `bytes` is a field file of a format [`read_field_file`] reads (a zip archive, or
+/// KML), rather than GeoJSON: by its first bytes.
+pub fn is_field_file(bytes: &[u8]) -> bool {
+    bytes.starts_with(b"PK") || is_kml(bytes)
+}
+
+/// Whether `bytes` is KML: XML whose first element is `kml`.
+fn is_kml(bytes: &[u8]) -> bool {
+    let head = String::from_utf8_lossy(&bytes[..bytes.len().min(4096)]);
+    let mut rest = head.trim_start_matches('\u{feff}').trim_start();
+    // The declaration, comments and processing instructions before the first element.
+    while let Some(after) = rest.strip_prefix("<?").or_else(|| rest.strip_prefix("<!")) {
+        match after.find('>') {
+            Some(end) => rest = after[end + 1..].trim_start(),
+            None => return false,
+        }
+    }
+    let element = rest.strip_prefix('<').unwrap_or("");
+    let tag: String = element
+        .chars()
+        .take_while(|c| c.is_alphanumeric() || *c == ':' || *c == '_' || *c == '-')
+        .collect();
+    tag.rsplit(':').next() == Some("kml")
+}
+
+fn read_kml_file(bytes: &[u8], format: &'static str) -> Result<FieldFile, PlanError> {
+    let text = std::str::from_utf8(bytes).map_err(|_| {
+        PlanError::new(
+            ErrorCode::InvalidFile,
+            "the KML file is not UTF-8 text, as KML must be: export it again",
+        )
+    })?;
+    Ok(FieldFile {
+        parcels: kml::read_kml(text)?,
+        format,
+        crs: "EPSG:4326 (WGS 84)".into(),
+    })
+}
+
+/// Whether `path` ends in `ext` (`.shp`), in any case.
+fn has_extension(path: &str, ext: &str) -> bool {
+    path.len() > ext.len()
+        && path.is_char_boundary(path.len() - ext.len())
+        && path[path.len() - ext.len()..].eq_ignore_ascii_case(ext)
 }
 
 /// The parcels of a Shapefile given as its files (name and bytes): those of a zip archive, or
 /// the parts dropped together. The first `.shp` is read, with the files of the same name.
 pub fn read_shapefile_files(files: &[(&str, &[u8])]) -> Result<FieldFile, PlanError> {
-    let extension = |path: &str, ext: &str| {
-        path.len() > ext.len()
-            && path.is_char_boundary(path.len() - ext.len())
-            && path[path.len() - ext.len()..].eq_ignore_ascii_case(ext)
-    };
+    let extension = has_extension;
     let stem_of = |path: &str| path[..path.len() - 4].to_string();
     let shp = files.iter().find(|(p, _)| extension(p, ".shp"));
     let Some(&(shp_path, shp)) = shp else {
