@@ -16,6 +16,9 @@
 //! the first). `--field-only` prints the field as read (GeoJSON, all its parcels or the one
 //! picked) instead of planning it.
 //!
+//! `--format isoxml` (or `isoxml-v3`) writes the plan as ISOXML TaskData for an ISOBUS terminal,
+//! zipped as `TASKDATA/TASKDATA.XML` (`--curves-as-ab`: the headland passes as AB segments).
+//!
 //! With `--from LON,LAT --heading DEG --to LON,LAT` it prints, instead of the plan, the shortest
 //! way along the plan's tracks from there to the nearest point of the boundary lane to `--to`
 //! (repeat `--to` for several exits; the nearest wins): a GeoJSON Feature with its `length_m`.
@@ -33,6 +36,7 @@
 #![allow(clippy::result_large_err)] // the error path of a command-line tool
 
 use furrow::field::geojson::MAX_INPUT_BYTES;
+use furrow::formats::isoxml::{taskdata_zip, TaskDataSettings, TaskDataVersion};
 use furrow::formats::{is_field_file, read_field_file, MAX_FILE_BYTES};
 use furrow::options::OPTION_DOCS;
 use furrow::tracks::{PlanTracks, Turning};
@@ -81,6 +85,10 @@ struct Command {
     parcel: Option<usize>,
     /// Print the field as read, not its plan.
     field_only: bool,
+    /// The plan as ISOXML TaskData (zipped) rather than GeoJSON.
+    format: Option<TaskDataVersion>,
+    /// The headland passes as AB segments in the TaskData.
+    curves_as_ab: bool,
 }
 
 /// A shortest-path question (`--from`, `--heading`, `--to`, `--turning`).
@@ -120,6 +128,17 @@ fn run(args: &[String]) -> Result<(), Failure> {
         out.push('\n');
         return write_out(&command.out, &out);
     }
+    if let Some(format) = command.format {
+        let settings = TaskDataSettings {
+            width_m: options.width,
+            version: format,
+            curves_as_ab: command.curves_as_ab,
+            name: None,
+        };
+        let zip =
+            taskdata_zip(&text, &plan.to_geojson_string(), &settings).map_err(Failure::Invalid)?;
+        return write_bytes(&command.out, &zip);
+    }
     let geojson = plan.to_geojson();
     let mut out = if command.summary_only {
         to_json(&geojson.summary, command.pretty)
@@ -132,12 +151,16 @@ fn run(args: &[String]) -> Result<(), Failure> {
 
 /// Writes `text` to the file `out` names, or to standard output.
 fn write_out(out: &Option<String>, text: &str) -> Result<(), Failure> {
+    write_bytes(out, text.as_bytes())
+}
+
+fn write_bytes(out: &Option<String>, bytes: &[u8]) -> Result<(), Failure> {
     match out {
-        Some(path) => std::fs::write(path, text)
+        Some(path) => std::fs::write(path, bytes)
             .map_err(|e| Failure::Io(format!("cannot write {path}: {e}")))?,
         None => std::io::stdout()
             .lock()
-            .write_all(text.as_bytes())
+            .write_all(bytes)
             .map_err(|e| Failure::Io(format!("cannot write the plan: {e}")))?,
     }
     Ok(())
@@ -155,7 +178,7 @@ fn position(flag: &str, text: Option<String>) -> Result<[f64; 2], Failure> {
 /// Whether the flag is a yes-or-no one, `true` without a value.
 fn is_switch(flag: &str) -> bool {
     let key = camel_case(flag);
-    matches!(flag, "pretty" | "summary" | "field-only")
+    matches!(flag, "pretty" | "summary" | "field-only" | "curves-as-ab")
         || OPTION_DOCS
             .iter()
             .any(|(k, unit, _)| *k == key && *unit == "true|false")
@@ -221,7 +244,7 @@ fn parse_args(args: &[String]) -> Result<Command, Failure> {
     let mut options = Map::new();
     let mut out = None;
     let (mut pretty, mut summary_only, mut field_only) = (false, false, false);
-    let mut parcel = None;
+    let (mut parcel, mut format, mut curves_as_ab) = (None, None, false);
     let (mut from, mut heading, mut to, mut turning) = (None, None, Vec::new(), None);
     let mut i = 0;
     while i < args.len() {
@@ -256,6 +279,20 @@ fn parse_args(args: &[String]) -> Result<Command, Failure> {
             "pretty" => pretty = true,
             "summary" => summary_only = true,
             "field-only" => field_only = true,
+            "curves-as-ab" => curves_as_ab = true,
+            "format" => {
+                format = match value.as_deref() {
+                    Some("geojson") => None,
+                    Some("isoxml") => Some(TaskDataVersion::V4),
+                    Some("isoxml-v3") => Some(TaskDataVersion::V3),
+                    v => {
+                        return Err(Failure::Usage(format!(
+                            "--format {}: expected geojson, isoxml or isoxml-v3",
+                            v.unwrap_or_default()
+                        )))
+                    }
+                };
+            }
             "parcel" => {
                 let v = value.unwrap_or_default();
                 parcel = Some(v.trim().parse::<usize>().map_err(|_| {
@@ -330,6 +367,8 @@ fn parse_args(args: &[String]) -> Result<Command, Failure> {
         path,
         parcel,
         field_only,
+        format,
+        curves_as_ab,
     })
 }
 
@@ -559,6 +598,14 @@ fn print_help() {
         "out", "<path>"
     );
     println!("  --{:<22} {:<13} indent the JSON", "pretty", "");
+    println!(
+        "  --{:<22} {:<13} the plan as GeoJSON (default), or as ISOXML TaskData for ISOBUS terminals (zipped TASKDATA/TASKDATA.XML; isoxml-v3 for older ones)",
+        "format", "<geojson|isoxml|isoxml-v3>"
+    );
+    println!(
+        "  --{:<22} {:<13} in ISOXML, the headland passes as AB segments, for terminals that take no curves",
+        "curves-as-ab", ""
+    );
     println!(
         "  --{:<22} {:<13} print only the plan's summary",
         "summary", ""

@@ -27,6 +27,30 @@ export function readFieldFile(bytes: Uint8Array | ArrayBuffer, name?: string): F
  */
 export function readShapefile(files: Iterable<{ name: string; bytes: Uint8Array | ArrayBuffer }>): FieldFileGeoJson;
 
+/** How a plan is written as ISOXML TaskData. */
+export interface TaskDataOptions {
+  /** The implement's working width, metres (the plan's `width`): the guidance lines' swath width. */
+  width: number;
+  /** 4 (the default: guidance groups and patterns) or 3 for older terminals. */
+  version?: 3 | 4;
+  /** The headland passes as AB segments, for terminals that take no curves. */
+  curvesAsAb?: boolean;
+  /** The partfield's name (at most 32 plain characters are kept); the field's own name by default. */
+  name?: string;
+}
+
+/**
+ * A plan as ISO 11783-10 TaskData for an ISOBUS terminal, zipped as `TASKDATA/TASKDATA.XML`:
+ * a partfield with the field's boundary and obstacles, a guidance group per block with an AB
+ * line along its swaths, and the headland passes as curves (version 3: the same lines as
+ * guidance line strings of the partfield). `field` is the field's GeoJSON as planned (WGS84), `plan` the result of `plan` (or
+ * its GeoJSON text).
+ */
+export function exportTaskData(field: unknown, plan: { features: unknown[] } | string, options: TaskDataOptions): Uint8Array;
+
+/** The same as the text of TASKDATA.XML. */
+export function taskDataXml(field: unknown, plan: { features: unknown[] } | string, options: TaskDataOptions): string;
+
 /**
  * Loads the readers' module, once, before any other call of this entry (the planner's `init`
  * does not load it). In a browser or worker it fetches furrow_formats_wasm_bg.wasm beside

@@ -42,6 +42,27 @@ export function readShapefile(files) {
   );
 }
 
+const taskDataText = formats.guarded("taskDataText");
+const taskDataZip = formats.guarded("taskDataZip");
+
+/** A plan as ISOXML TaskData, zipped as TASKDATA/TASKDATA.XML: see formats.d.ts. */
+export function exportTaskData(field, plan, options = {}) {
+  return taskDataZip(...taskDataArguments(field, plan, options));
+}
+
+/** A plan as the text of TASKDATA.XML: see formats.d.ts. */
+export function taskDataXml(field, plan, options = {}) {
+  return taskDataText(...taskDataArguments(field, plan, options));
+}
+
+function taskDataArguments(field, plan, options) {
+  const fieldText = typeof field === "string" ? field : JSON.stringify(field);
+  // The plan's features only: its samples (typed arrays) are not needed.
+  const planText = typeof plan === "string" ? plan : JSON.stringify({ type: "FeatureCollection", features: plan?.features ?? [] });
+  const { width = NaN, version = 4, curvesAsAb = false, name } = options ?? {};
+  return [fieldText, planText, Number(width), Number(version), Boolean(curvesAsAb), name == null ? undefined : String(name)];
+}
+
 function asBytes(b) {
   if (b instanceof Uint8Array) return b;
   if (b instanceof ArrayBuffer) return new Uint8Array(b);

@@ -714,3 +714,41 @@ fn the_readme_cli_examples_run() {
         assert!(json.is_object(), "{args:?}");
     }
 }
+
+#[test]
+fn the_plan_goes_to_an_isobus_terminal_as_zipped_isoxml() {
+    let dir = std::env::temp_dir().join(format!("furrow-cli-isoxml-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let zip = dir.join("taskdata.zip");
+    let out = run(&[
+        &field("l-shape.geojson"),
+        "--width",
+        "6",
+        "--format",
+        "isoxml",
+        "--out",
+        &zip.display().to_string(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    // Unpacked by Python's zipfile, another reader than furrow's.
+    let script = "import sys, zipfile; z = zipfile.ZipFile(sys.argv[1]); print(z.namelist()); sys.stdout.write(z.read('TASKDATA/TASKDATA.XML').decode())";
+    let read = Command::new("python3")
+        .args(["-c", script, &zip.display().to_string()])
+        .output()
+        .expect("python3 runs");
+    let text = String::from_utf8_lossy(&read.stdout);
+    assert!(text.starts_with("['TASKDATA/TASKDATA.XML']"), "{text}");
+    assert!(text.contains(r#"<ISO11783_TaskData VersionMajor="4""#));
+    assert!(text.contains(r#"<PFD A="PFD1""#) && text.contains(r#"<GGP A="GGP1" B="Block 1">"#));
+    // Version 3, and a format it does not write.
+    let out = run(&[&field("l-shape.geojson"), "--format", "isoxml-v3"]);
+    assert!(out.status.success());
+    let out = run(&[&field("l-shape.geojson"), "--format", "shapefile"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert_eq!(error_code(&out), "usage");
+    let _ = std::fs::remove_dir_all(&dir);
+}

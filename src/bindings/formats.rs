@@ -10,6 +10,7 @@
 
 use super::to_js_error;
 use crate::error::{ErrorCode, PlanError};
+use crate::formats::isoxml::{taskdata_xml, taskdata_zip, TaskDataSettings, TaskDataVersion};
 use crate::formats::{read_field_file, read_shapefile_files};
 use wasm_bindgen::prelude::*;
 
@@ -47,4 +48,58 @@ pub fn read_shapefile_text(names: Vec<String>, contents: js_sys::Array) -> Resul
     read_shapefile_files(&files)
         .map(|f| f.to_geojson_string())
         .map_err(|e| to_js_error(&e))
+}
+
+/// How a plan is written as TaskData, from what JavaScript passes.
+fn taskdata_settings(
+    width: f64,
+    version: u32,
+    curves_as_ab: bool,
+    name: Option<String>,
+) -> Result<TaskDataSettings, JsValue> {
+    let version = match version {
+        3 => TaskDataVersion::V3,
+        4 => TaskDataVersion::V4,
+        v => {
+            let e = PlanError::new(
+                ErrorCode::InvalidOption,
+                format!("option `version` is {v}: ISOXML TaskData is written in version 4, or 3 for older terminals"),
+            );
+            return Err(to_js_error(&e));
+        }
+    };
+    Ok(TaskDataSettings {
+        width_m: width,
+        version,
+        curves_as_ab,
+        name,
+    })
+}
+
+/// A plan (its GeoJSON text) of a field (its GeoJSON text) as the text of `TASKDATA.XML`.
+#[wasm_bindgen(js_name = taskDataText, skip_typescript)]
+pub fn task_data_text(
+    field: &str,
+    plan: &str,
+    width: f64,
+    version: u32,
+    curves_as_ab: bool,
+    name: Option<String>,
+) -> Result<String, JsValue> {
+    let settings = taskdata_settings(width, version, curves_as_ab, name)?;
+    taskdata_xml(field, plan, &settings).map_err(|e| to_js_error(&e))
+}
+
+/// The same zipped as `TASKDATA/TASKDATA.XML`.
+#[wasm_bindgen(js_name = taskDataZip, skip_typescript)]
+pub fn task_data_zip(
+    field: &str,
+    plan: &str,
+    width: f64,
+    version: u32,
+    curves_as_ab: bool,
+    name: Option<String>,
+) -> Result<Vec<u8>, JsValue> {
+    let settings = taskdata_settings(width, version, curves_as_ab, name)?;
+    taskdata_zip(field, plan, &settings).map_err(|e| to_js_error(&e))
 }

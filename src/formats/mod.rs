@@ -10,8 +10,10 @@
 //! - [`shapefile`]: the parcels of a Shapefile.
 //! - [`kml`]: the parcels of KML (and of KMZ, a zip of it).
 //! - [`crs`]: the coordinate systems they come in, converted to WGS84.
+//! - [`isoxml`]: a plan written as ISO 11783-10 TaskData, for ISOBUS terminals.
 
 pub mod crs;
+pub mod isoxml;
 pub mod kml;
 pub mod shapefile;
 pub mod zip;

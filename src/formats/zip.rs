@@ -86,6 +86,57 @@ pub fn unzip(bytes: &[u8]) -> Result<Vec<ZipFile>, PlanError> {
     Ok(files)
 }
 
+/// A zip archive of one file, `path`, deflated.
+pub fn zip_one(path: &str, data: &[u8]) -> Result<Vec<u8>, PlanError> {
+    // Writing to memory fails only on a bug.
+    fn failed<E>(_: E) -> PlanError {
+        PlanError::new(ErrorCode::Internal, "the zip archive could not be written")
+    }
+    let mut out = Vec::new();
+    let mut archive = rawzip::ZipArchiveWriter::new(&mut out);
+    let (mut entry, config) = archive
+        .new_file(path)
+        .compression_method(rawzip::CompressionMethod::DEFLATE)
+        .start()
+        .map_err(failed)?;
+    let mut writer = config.wrap(Deflater {
+        inner: &mut entry,
+        buffer: Vec::new(),
+    });
+    std::io::Write::write_all(&mut writer, data).map_err(failed)?;
+    let (deflater, descriptor) = writer.finish().map_err(failed)?;
+    deflater.finish().map_err(failed)?;
+    entry.finish(descriptor).map_err(failed)?;
+    archive.finish().map_err(failed)?;
+    Ok(out)
+}
+
+/// Deflates what is written to it, in one piece when finished (`miniz_oxide` has no stream
+/// writer; a TaskData file is a few megabytes at most).
+struct Deflater<W: std::io::Write> {
+    inner: W,
+    buffer: Vec<u8>,
+}
+
+impl<W: std::io::Write> std::io::Write for Deflater<W> {
+    fn write(&mut self, data: &[u8]) -> std::io::Result<usize> {
+        self.buffer.extend_from_slice(data);
+        Ok(data.len())
+    }
+
+    fn flush(&mut self) -> std::io::Result<()> {
+        Ok(())
+    }
+}
+
+impl<W: std::io::Write> Deflater<W> {
+    fn finish(mut self) -> std::io::Result<W> {
+        let compressed = miniz_oxide::deflate::compress_to_vec(&self.buffer, 6);
+        self.inner.write_all(&compressed)?;
+        Ok(self.inner)
+    }
+}
+
 fn damaged(what: &str) -> PlanError {
     PlanError::new(
         ErrorCode::InvalidFile,
@@ -139,6 +190,16 @@ mod tests {
                 "cut at {cut}"
             );
         }
+    }
+
+    #[test]
+    fn a_zip_written_reads_back() {
+        let text = "<ISO11783_TaskData/>".repeat(100);
+        let zip = zip_one("TASKDATA/TASKDATA.XML", text.as_bytes()).unwrap();
+        assert!(zip.len() < text.len() / 4, "deflated: {} bytes", zip.len());
+        let files = unzip(&zip).unwrap();
+        assert_eq!(files[0].path, "TASKDATA/TASKDATA.XML");
+        assert_eq!(files[0].bytes, text.as_bytes());
     }
 
     #[test]
