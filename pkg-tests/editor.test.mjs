@@ -7,6 +7,7 @@
 //   bash scripts/build.sh   (once), then   node --test pkg-tests/editor.test.mjs
 import { test } from "node:test";
 import assert from "node:assert/strict";
+import { ISOXMLManager } from "isoxml";
 import { mkdirSync, readFileSync } from "node:fs";
 import { join } from "node:path";
 import {
@@ -216,6 +217,17 @@ test("editor: import a corpus file and export it again equal; export the plan", 
       "every swath is in the file",
     );
     assert.equal(plan.samples, undefined, "no typed arrays in the GeoJSON");
+    // The plan for an ISOBUS terminal: ISOXML TaskData, zipped, read back by the npm isoxml
+    // package: the boundary, and an AB line per block with swaths.
+    const [taskdata] = await Promise.all([page.waitForEvent("download"), page.click("#export-isoxml")]);
+    assert.match(taskdata.suggestedFilename(), /-TASKDATA\.zip$/);
+    const manager = new ISOXMLManager();
+    await manager.parseISOXMLFile(new Uint8Array(readFileSync(await taskdata.path())), "application/zip");
+    assert.deepEqual(manager.getWarnings(), []);
+    const pfd = manager.rootElement.attributes.Partfield[0].attributes;
+    assert.equal(pfd.PolygonnonTreatmentZoneonly.filter((p) => p.attributes.PolygonType === "1").length, 1);
+    const blocks = new Set(plan.features.filter((f) => f.properties.kind === "swath").map((f) => f.properties.block));
+    assert.equal(pfd.GuidanceGroup.filter((g) => g.attributes.GuidanceGroupDesignator.startsWith("Block ")).length, blocks.size);
   });
 });
 

@@ -6,7 +6,7 @@ import { sentence } from "./notes.js";
 import { initPlanner, readFile } from "./planner.js";
 import { forgetParcels, parcelFeatures, parcelFile, showParcels } from "./parcels.js";
 import { replan, showFailure } from "./planning.js";
-import { readLimit, sizeError } from "./reading.js";
+import { loadFormats, readLimit, sizeError } from "./reading.js";
 import { fieldParts, fieldScene, inputFeatures, parseForDrawing, projectFeature, projectionFor } from "./scene.js";
 import { applySuggested, forgetFieldReferences } from "./settings.js";
 
@@ -257,9 +257,25 @@ export function planText() {
   return `${JSON.stringify(plan)}\n`;
 }
 
-export function download(name, text) {
-  if (!text) return;
-  const url = URL.createObjectURL(new Blob([text], { type: "application/geo+json" }));
+/**
+ * Saves the plan as ISOXML TaskData for an ISOBUS terminal (a zip holding TASKDATA/TASKDATA.XML),
+ * written by the package's furrow/formats module (loaded the first time).
+ */
+export async function saveTaskData(width) {
+  if (!state.plan) return;
+  const plan = state.plan;
+  try {
+    const formats = await loadFormats();
+    const zip = formats.exportTaskData(fieldText(), plan, { width, name: state.entry?.name });
+    download(`${fileName()}-TASKDATA.zip`, zip, "application/zip");
+  } catch (e) {
+    ui.status.textContent = `The plan could not be saved as ISOXML: ${sentence(e?.message ?? String(e))}`;
+  }
+}
+
+export function download(name, text, type = "application/geo+json") {
+  if (!text || !text.length) return;
+  const url = URL.createObjectURL(new Blob([text], { type }));
   const a = document.createElement("a");
   a.href = url;
   a.download = name;

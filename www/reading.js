@@ -103,8 +103,8 @@ async function readConverted(files) {
 
 let formatsModule = null; // furrow/formats, once loaded
 
-/** The package's readers of field files, loaded on first use. */
-function loadFormats() {
+/** The package's readers and writers of field files (furrow/formats), loaded on first use. */
+export function loadFormats() {
   formatsModule ??= import("./pkg/formats.js").then(
     async (module) => {
       await module.default();
