@@ -11,7 +11,8 @@
 //! input. The plan (GeoJSON) goes to standard output unless `--out` names a file.
 //!
 //! `FIELD` may also be a zipped Shapefile (`.zip` with `.shp`, `.shx`, `.dbf`, `.prj`), read and
-//! converted to WGS84 by `furrow::formats`, or KML or KMZ. A file of several parcels (a register's export, as
+//! converted to WGS84 by `furrow::formats`, KML or KMZ, or ISOXML TaskData (`TASKDATA.XML`
+//! or its zip). A file of several parcels (a register's export, as
 //! a Shapefile or GeoJSON) is planned one parcel at a time: `--parcel INDEX` picks one (0 for
 //! the first). `--field-only` prints the field as read (GeoJSON, all its parcels or the one
 //! picked) instead of planning it.
@@ -459,13 +460,18 @@ fn kebab_message(message: &str) -> String {
 fn read_field(path: &str, parcel: Option<usize>, all: bool) -> Result<String, Failure> {
     let bytes = read_input(path)?;
     let mut geojson = if is_field_file(&bytes) {
-        let file = read_field_file(&bytes, path).map_err(Failure::Invalid)?;
+        let mut file = read_field_file(&bytes, path).map_err(Failure::Invalid)?;
         let count = file.parcels.len();
         if count > 1 && parcel.is_none() && !all {
             return Err(Failure::Invalid(PlanError::new(
                 ErrorCode::AmbiguousBoundary,
                 format!("{path} holds {count} parcels: plan one with --parcel INDEX (0 to {}), or see them with --field-only", count - 1),
             )));
+        }
+        // The parcel picked as a file of its own: a TaskData partfield with its AB line.
+        if let Some(index) = parcel.filter(|&i| i < count) {
+            file.parcels = vec![file.parcels.swap_remove(index)];
+            return Ok(file.to_geojson_string());
         }
         file.to_geojson()
     } else {
@@ -578,7 +584,7 @@ fn print_help() {
         env!("CARGO_PKG_VERSION")
     );
     println!("{USAGE}\n");
-    println!("FIELD is GeoJSON (a FeatureCollection with roles, a Feature or a Polygon) a zipped Shapefile (.zip with .shp, .shx, .dbf, .prj), KML or KMZ; - reads standard input.\n");
+    println!("FIELD is GeoJSON (a FeatureCollection with roles, a Feature or a Polygon) a zipped Shapefile (.zip with .shp, .shx, .dbf, .prj), KML, KMZ or ISOXML TaskData (TASKDATA.XML or its zip); - reads standard input.\n");
     println!("  --{:<22} {:<13} the parcel to plan of a file of several (a register's export), 0 for the first", "parcel", "<index>");
     println!(
         "  --{:<22} {:<13} print the field as read (GeoJSON in WGS84) instead of planning it\n",

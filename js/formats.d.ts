@@ -11,9 +11,10 @@ export { FurrowError } from "./furrow.js";
 /**
  * The parcels of a field file: a zipped Shapefile (`.zip` holding `.shp`, `.shx`, `.dbf` and
  * `.prj`), converted to WGS84 from the system its `.prj` names (WGS 84 and ETRS89, UTM on
- * either, RD New with its datum shift, ETRS-TM35FIN); or KML or KMZ (every placemark's
- * polygons, their inner boundaries as holes, the placemark's name and extended data as
- * properties). Each polygon is a Feature: give the
+ * either, RD New with its datum shift, ETRS-TM35FIN); KML or KMZ (every placemark's polygons,
+ * their inner boundaries as holes, the placemark's name and extended data as properties); or
+ * ISOXML TaskData, `TASKDATA.XML` or its zip (each partfield's boundary with its obstacles as
+ * holes, its guidance lines as `guidance` and its first AB line as `reference_line`). Each polygon is a Feature: give the
  * collection to `plan` where it holds one, or one of its features where it holds several.
  * Throws a `FurrowError`: `invalid_file` (damaged, incomplete, not a format it reads), `unknown_crs` (a
  * system it does not convert from, named), `input_too_large` (over 64 MB, or unpacking to more

@@ -331,7 +331,7 @@ test("first hour: a 1.2 M-vertex file is refused within 3 s without holding up t
   }
 });
 
-test("first hour: a zipped Shapefile in RD New opens as its parcels where the register has them; its parts chosen together open the same; KML too; a cut one is refused", { timeout: TIMEOUT }, async () => {
+test("first hour: a zipped Shapefile in RD New opens as its parcels where the register has them; its parts chosen together open the same; KML and TaskData too; a cut one is refused", { timeout: TIMEOUT }, async () => {
   const fixtures = join(FIELDS, "..", "format-fixtures");
   const register = JSON.parse(readFileSync(join(FIELDS, "real/nl_brp_2023_sample.geojson"), "utf8"));
   const dir = join(SHOTS, "..", "first-hour-shapefile");
@@ -371,6 +371,10 @@ test("first hour: a zipped Shapefile in RD New opens as its parcels where the re
       await open(join(fixtures, "dk_marker.kml"));
       await page.waitForSelector("body[data-plan-state=pick]");
       const danish = JSON.parse(readFileSync(join(FIELDS, "real/dk_marker_2026_sample.geojson"), "utf8"));
+      assert.deepEqual(await names(), danish.features.map((f) => f.properties.id));
+      // An ISOBUS terminal's TaskData (written by the npm isoxml package): its partfields.
+      await open(join(fixtures, "dk_marker_taskdata_v4.zip"));
+      await page.waitForSelector("body[data-plan-state=pick]");
       assert.deepEqual(await names(), danish.features.map((f) => f.properties.id));
       // A download cut short: a typed error, nothing planned.
       await open(cut);

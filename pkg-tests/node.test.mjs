@@ -118,6 +118,11 @@ test("furrow/formats reads a zipped Shapefile (RD New) to the register's parcels
     () => formatsEntry.readFieldFile(zip.subarray(0, zip.length >> 1), "cut.zip"),
     (e) => e instanceof furrow.FurrowError && e.code === "invalid_file",
   );
+  // TaskData (written by the npm isoxml package): the Dutch parcels, each with its AB line.
+  const taskdata = formatsEntry.readFieldFile(readFileSync(new URL("nl_brp_taskdata_v3.zip", fixturesUrl)), "nl.zip");
+  assert.equal(taskdata.source.format, "isoxml");
+  assert.equal(taskdata.features.length, register.features.length);
+  assert.ok(taskdata.features.every((f) => f.properties.reference_line?.length === 2));
   // KMZ (GDAL's KML, zipped): the Danish parcels by their names.
   const kmz = formatsEntry.readFieldFile(readFileSync(new URL("dk_marker.kmz", fixturesUrl)), "dk_marker.kmz");
   assert.equal(kmz.source.format, "kmz");

@@ -191,6 +191,44 @@ fn kml_and_kmz_read_back_the_parcels_with_their_names() {
     }
 }
 
+#[test]
+fn isoxml_taskdata_v4_and_v3_read_back_the_parcels_with_their_ab_lines() {
+    for (file_name, register_name) in [
+        ("dk_marker_taskdata_v4.zip", "dk_marker_2026_sample"),
+        ("nl_brp_taskdata_v3.zip", "nl_brp_2023_sample"),
+    ] {
+        let file = read_field_file(&fixture_file(file_name), file_name).unwrap();
+        assert_eq!(file.format, "isoxml");
+        assert_same_as_register(&file, file_name, register_name);
+        // Each partfield's AB line (written along its first edge) is its reference line.
+        let register = register(register_name);
+        for (parcel, rings) in file.parcels.iter().zip(&register) {
+            let line = &parcel.properties["reference_line"];
+            let a = [line[0][0].as_f64().unwrap(), line[0][1].as_f64().unwrap()];
+            let b = [line[1][0].as_f64().unwrap(), line[1][1].as_f64().unwrap()];
+            assert!(
+                metres(a, rings[0][0]) < 0.01 && metres(b, rings[0][1]) < 0.01,
+                "{file_name}"
+            );
+            assert_eq!(parcel.properties["guidance"][0]["kind"], "ab");
+        }
+    }
+    // A file of one partfield is a field the planner reads as it is: its boundary and the AB
+    // line its swaths follow.
+    let one = r#"<ISO11783_TaskData VersionMajor="4"><PFD A="PFD1" C="One">
+        <PLN A="1"><LSG A="1"><PNT A="2" C="60.25" D="24.05"/><PNT A="2" C="60.25" D="24.056"/>
+        <PNT A="2" C="60.252" D="24.056"/><PNT A="2" C="60.252" D="24.05"/></LSG></PLN>
+        <GGP A="GGP1"><GPN A="GPN1" C="1"><LSG A="5"><PNT A="6" C="60.25" D="24.05"/>
+        <PNT A="7" C="60.252" D="24.0505"/></LSG></GPN></GGP></PFD></ISO11783_TaskData>"#;
+    let file = read_field_file(one.as_bytes(), "TASKDATA.XML").unwrap();
+    let geojson = file.to_geojson_string();
+    let plan = furrow::plan_geojson(&geojson, &furrow::PlanOptions::default()).unwrap();
+    assert_eq!(
+        plan.summary.direction.mode,
+        furrow::direction::DirectionMode::Reference
+    );
+}
+
 /// The fixture's files (unzipped) but those whose name ends in one of `leave_out`.
 fn parts_without(name: &str, leave_out: &[&str]) -> Vec<(String, Vec<u8>)> {
     unzip(&fixture(name))
@@ -249,9 +287,17 @@ fn damaged_and_unknown_files_give_typed_errors() {
         }
     }
     assert_eq!(read_parts(&parts).unwrap_err().code, ErrorCode::InvalidFile);
-    // Not a zip or a Shapefile at all, and a file over the size cap.
+    // Not a zip or a Shapefile at all, XML that is not TaskData, a partfield without a
+    // boundary, and a file over the size cap.
     let e = read_field_file(b"TASKDATA", "TASKDATA.XML").unwrap_err();
     assert_eq!(e.code, ErrorCode::InvalidFile);
+    let e = read_field_file(b"<?xml version=\"1.0\"?><gpx/>", "track.gpx").unwrap_err();
+    assert_eq!(e.code, ErrorCode::InvalidFile);
+    let bare =
+        br#"<ISO11783_TaskData VersionMajor="4"><PFD A="PFD1" C="Bare"/></ISO11783_TaskData>"#;
+    let e = read_field_file(bare, "TASKDATA.XML").unwrap_err();
+    assert_eq!(e.code, ErrorCode::NoBoundary);
+    assert!(e.message.contains("Bare"), "{}", e.message);
     let huge = vec![0u8; MAX_FILE_BYTES + 1];
     assert_eq!(
         read_field_file(&huge, "huge.zip").unwrap_err().code,
@@ -295,6 +341,25 @@ proptest! {
         }
         let keep = (kml.len() as f64 * cut) as usize;
         if let Err(e) = read_field_file(&kml[..keep.max(5)], "x.kml") {
+            prop_assert_ne!(e.code, ErrorCode::Internal);
+        }
+    }
+
+    /// TaskData with bytes changed or cut off reads or gives a typed error.
+    #[test]
+    fn a_damaged_taskdata_never_panics(
+        cut in 0.0..1.0f64,
+        changes in prop::collection::vec((0.0..1.0f64, prop::sample::select(b"<>/\"= A1.,-".to_vec())), 0..8),
+    ) {
+        let zip = fixture_file("nl_brp_taskdata_v3.zip");
+        let mut xml = unzip(&zip).unwrap().into_iter().find(|f| f.path.ends_with(".XML")).unwrap().bytes;
+        xml.truncate(40_000);
+        for (at, byte) in changes {
+            let i = ((xml.len() - 1) as f64 * at) as usize;
+            xml[i] = byte;
+        }
+        let keep = (xml.len() as f64 * cut) as usize;
+        if let Err(e) = read_field_file(&xml[..keep.max(5)], "TASKDATA.XML") {
             prop_assert_ne!(e.code, ErrorCode::Internal);
         }
     }

@@ -55,7 +55,7 @@ export function bindDrop(map) {
 export async function openFile(input) {
   const files = Array.isArray(input) ? input : [input];
   const first = files.find((f) => /\.shp$/i.test(f.name)) ?? files[0];
-  const name = first.name.replace(/\.((geo)?json|zip|shp|kml|kmz)$/i, "") || first.name;
+  const name = first.name.replace(/\.((geo)?json|zip|shp|kml|kmz|xml)$/i, "") || first.name;
   const token = ++state.loadToken;
   const tooLarge = sizeError(
     files.map((f) => f.name).join(", "),

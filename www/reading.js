@@ -15,10 +15,10 @@ export const MAX_VERTICES = 200_000;
 /** The largest file of another format read (MAX_FILE_BYTES in src/formats/mod.rs). */
 export const MAX_FILE_BYTES = 64 * 1024 * 1024;
 
-/** Whether files are a field file of another format than GeoJSON: a zipped Shapefile, KML or
- * KMZ, or a Shapefile's parts. */
+/** Whether files are a field file of another format than GeoJSON: a zipped Shapefile, KML,
+ * KMZ or ISOXML TaskData (TASKDATA.XML, or its zip), or a Shapefile's parts. */
 export function isConverted(files) {
-  return files.length > 1 || /\.(zip|kml|kmz|shp|shx|dbf|prj|cpg)$/i.test(files[0]?.name ?? "");
+  return files.length > 1 || /\.(zip|kml|kmz|xml|shp|shx|dbf|prj|cpg)$/i.test(files[0]?.name ?? "");
 }
 
 /** The most bytes read of these files. */
@@ -91,7 +91,7 @@ async function readConverted(files) {
     return { error: { code: "file_unreadable", message: `the file ${names} could not be read: ${e?.message ?? e}` } };
   }
   try {
-    const whole = files.length === 1 && /\.(zip|kml|kmz)$/i.test(files[0].name ?? "");
+    const whole = files.length === 1 && /\.(zip|kml|kmz|xml)$/i.test(files[0].name ?? "");
     const geojson = whole
       ? formats.readFieldFile(bytes[0], files[0].name)
       : formats.readShapefile(files.map((f, i) => ({ name: f.name, bytes: bytes[i] })));

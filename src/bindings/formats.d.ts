@@ -3,10 +3,20 @@
 export interface FieldFileGeoJson {
   type: "FeatureCollection";
   /** What was read: the format and the coordinate system converted from. */
-  source: { format: "shapefile" | "kml" | "kmz"; crs: string };
-  features: Array<{
-    type: "Feature";
-    properties: Record<string, string | number | boolean>;
-    geometry: { type: "Polygon"; coordinates: number[][][] };
-  }>;
+  source: { format: "shapefile" | "kml" | "kmz" | "isoxml"; crs: string };
+  features: Array<
+    | {
+        type: "Feature";
+        /** The file's attributes; from TaskData also `guidance` (each AB line and curve of the
+         * partfield) and `reference_line` (its first AB line, [A, B]). */
+        properties: Record<string, unknown>;
+        geometry: { type: "Polygon"; coordinates: number[][][] };
+      }
+    | {
+        /** A file of one TaskData partfield with an AB line: the line, `role: "reference_line"`. */
+        type: "Feature";
+        properties: { role: "reference_line" };
+        geometry: { type: "LineString"; coordinates: number[][] };
+      }
+  >;
 }

@@ -9,6 +9,7 @@
 //! - [`zip`]: the files of a zip archive.
 //! - [`shapefile`]: the parcels of a Shapefile.
 //! - [`kml`]: the parcels of KML (and of KMZ, a zip of it).
+//! - [`taskdata`]: the partfields of ISOXML TaskData (and of its zip), with their guidance.
 //! - [`crs`]: the coordinate systems they come in, converted to WGS84.
 //! - [`isoxml`]: a plan written as ISO 11783-10 TaskData, for ISOBUS terminals.
 
@@ -16,6 +17,7 @@ pub mod crs;
 pub mod isoxml;
 pub mod kml;
 pub mod shapefile;
+pub mod taskdata;
 pub mod zip;
 
 use self::shapefile::{read_shapefile, ShapefileParts};
@@ -43,7 +45,7 @@ pub struct Parcel {
 pub struct FieldFile {
     /// Its parcels, in the file's order.
     pub parcels: Vec<Parcel>,
-    /// The format read: `"shapefile"`, `"kml"` or `"kmz"`.
+    /// The format read: `"shapefile"`, `"kml"`, `"kmz"` or `"isoxml"`.
     pub format: &'static str,
     /// The coordinate system the file was in, converted from: `"EPSG:28992 (Amersfoort / RD New)"`.
     pub crs: String,
@@ -83,6 +85,22 @@ pub fn read_field_file(bytes: &[u8], name: &str) -> Result<FieldFile, PlanError>
             .iter()
             .map(|f| (f.path.as_str(), f.bytes.as_slice()))
             .collect();
+        let taskdata = named.iter().find(|(p, _)| {
+            p.rsplit('/')
+                .next()
+                .is_some_and(|f| f.eq_ignore_ascii_case("TASKDATA.XML"))
+        });
+        if let Some(&(path, text)) = taskdata {
+            let folder = &path[..path.len() - "TASKDATA.XML".len()];
+            let external = |name: &str| {
+                let wanted = format!("{folder}{name}.XML");
+                named
+                    .iter()
+                    .find(|(p, _)| p.eq_ignore_ascii_case(&wanted))
+                    .map(|(_, b)| String::from_utf8_lossy(b).into_owned())
+            };
+            return read_taskdata_file(text, external);
+        }
         let kml = named.iter().find(|(p, _)| has_extension(p, ".kml"));
         if let (Some(&(_, text)), false) =
             (kml, named.iter().any(|(p, _)| has_extension(p, ".shp")))
@@ -91,40 +109,55 @@ pub fn read_field_file(bytes: &[u8], name: &str) -> Result<FieldFile, PlanError>
         }
         return read_shapefile_files(&named);
     }
-    if is_kml(bytes) {
-        return read_kml_file(bytes, "kml");
+    match root_element(bytes).as_deref() {
+        Some("kml") => return read_kml_file(bytes, "kml"),
+        Some("ISO11783_TaskData") => return read_taskdata_file(bytes, |_| None),
+        _ => {}
     }
     Err(PlanError::new(
         ErrorCode::InvalidFile,
         format!(
-            "{name} is not a file furrow reads: a field is GeoJSON, KML or KMZ, or a zipped Shapefile (.zip with .shp, .shx, .dbf and .prj)"
+            "{name} is not a file furrow reads: a field is GeoJSON, KML or KMZ, ISOXML TaskData (TASKDATA.XML, or its zip), or a zipped Shapefile (.zip with .shp, .shx, .dbf and .prj)"
         ),
     ))
 }
 
-/// Whether `bytes` is a field file of a format [`read_field_file`] reads (a zip archive, or
-/// KML), rather than GeoJSON: by its first bytes.
+/// Whether `bytes` is a field file of a format [`read_field_file`] reads (a zip archive, KML
+/// or TaskData), rather than GeoJSON: by its first bytes.
 pub fn is_field_file(bytes: &[u8]) -> bool {
-    bytes.starts_with(b"PK") || is_kml(bytes)
+    bytes.starts_with(b"PK") || root_element(bytes).is_some()
 }
 
-/// Whether `bytes` is KML: XML whose first element is `kml`.
-fn is_kml(bytes: &[u8]) -> bool {
+/// The name of the first element of XML text (its local name, without a prefix), if `bytes`
+/// is XML.
+fn root_element(bytes: &[u8]) -> Option<String> {
     let head = String::from_utf8_lossy(&bytes[..bytes.len().min(4096)]);
     let mut rest = head.trim_start_matches('\u{feff}').trim_start();
     // The declaration, comments and processing instructions before the first element.
     while let Some(after) = rest.strip_prefix("<?").or_else(|| rest.strip_prefix("<!")) {
-        match after.find('>') {
-            Some(end) => rest = after[end + 1..].trim_start(),
-            None => return false,
-        }
+        rest = after[after.find('>')? + 1..].trim_start();
     }
-    let element = rest.strip_prefix('<').unwrap_or("");
+    let element = rest.strip_prefix('<')?;
     let tag: String = element
         .chars()
         .take_while(|c| c.is_alphanumeric() || *c == ':' || *c == '_' || *c == '-')
         .collect();
-    tag.rsplit(':').next() == Some("kml")
+    tag.rsplit(':')
+        .next()
+        .filter(|t| !t.is_empty())
+        .map(str::to_string)
+}
+
+fn read_taskdata_file(
+    bytes: &[u8],
+    external: impl Fn(&str) -> Option<String>,
+) -> Result<FieldFile, PlanError> {
+    let text = String::from_utf8_lossy(bytes);
+    Ok(FieldFile {
+        parcels: taskdata::read_taskdata(&text, external)?,
+        format: "isoxml",
+        crs: "EPSG:4326 (WGS 84)".into(),
+    })
 }
 
 fn read_kml_file(bytes: &[u8], format: &'static str) -> Result<FieldFile, PlanError> {
@@ -185,8 +218,12 @@ impl FieldFile {
     /// The parcels as a GeoJSON FeatureCollection of Polygon features (coordinates to nine
     /// decimals, a tenth of a millimetre), with their attributes as properties; and the
     /// format and the system read from as the collection's `source`.
+    ///
+    /// A file of one parcel whose properties have a `reference_line` (a TaskData partfield's AB
+    /// line) is a field the planner reads as it is: the parcel is its `boundary`, the line its
+    /// `reference_line` feature, which the swaths follow.
     pub fn to_geojson(&self) -> Value {
-        let features: Vec<Value> = self
+        let mut features: Vec<Value> = self
             .parcels
             .iter()
             .map(|p| {
@@ -197,6 +234,17 @@ impl FieldFile {
                 })
             })
             .collect();
+        if let ([parcel], [feature]) = (self.parcels.as_slice(), features.as_mut_slice()) {
+            if let Some(line) = parcel.properties.get("reference_line") {
+                feature["properties"]["role"] = json!("boundary");
+                let line = json!({
+                    "type": "Feature",
+                    "properties": { "role": "reference_line" },
+                    "geometry": { "type": "LineString", "coordinates": line },
+                });
+                features.push(line);
+            }
+        }
         json!({
             "type": "FeatureCollection",
             "source": { "format": self.format, "crs": self.crs },
