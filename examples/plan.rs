@@ -17,7 +17,8 @@
 //! the first). `--field-only` prints the field as read (GeoJSON, all its parcels or the one
 //! picked) instead of planning it.
 //!
-//! `--format isoxml` (or `isoxml-v3`) writes the plan as ISOXML TaskData for an ISOBUS terminal,
+//! `--format kml` writes the plan as KML for Google Earth; `--format isoxml` (or `isoxml-v3`)
+//! writes it as ISOXML TaskData for an ISOBUS terminal,
 //! zipped as `TASKDATA/TASKDATA.XML` (`--curves-as-ab`: the headland passes as AB segments).
 //!
 //! With `--from LON,LAT --heading DEG --to LON,LAT` it prints, instead of the plan, the shortest
@@ -38,6 +39,7 @@
 
 use furrow::field::geojson::MAX_INPUT_BYTES;
 use furrow::formats::isoxml::{taskdata_zip, TaskDataSettings, TaskDataVersion};
+use furrow::formats::plan_kml::plan_kml;
 use furrow::formats::{is_field_file, read_field_file, MAX_FILE_BYTES};
 use furrow::options::OPTION_DOCS;
 use furrow::tracks::{PlanTracks, Turning};
@@ -90,6 +92,8 @@ struct Command {
     format: Option<TaskDataVersion>,
     /// The headland passes as AB segments in the TaskData.
     curves_as_ab: bool,
+    /// The plan as KML rather than GeoJSON.
+    kml: bool,
 }
 
 /// A shortest-path question (`--from`, `--heading`, `--to`, `--turning`).
@@ -126,6 +130,11 @@ fn run(args: &[String]) -> Result<(), Failure> {
             .shortest_path(q.from, q.heading_deg, &q.to, q.turning)
             .map_err(Failure::Invalid)?;
         let mut out = to_json(&tracks.to_feature(&path, q.turning), command.pretty);
+        out.push('\n');
+        return write_out(&command.out, &out);
+    }
+    if command.kml {
+        let mut out = plan_kml(&text, &plan.to_geojson_string()).map_err(Failure::Invalid)?;
         out.push('\n');
         return write_out(&command.out, &out);
     }
@@ -245,7 +254,7 @@ fn parse_args(args: &[String]) -> Result<Command, Failure> {
     let mut options = Map::new();
     let mut out = None;
     let (mut pretty, mut summary_only, mut field_only) = (false, false, false);
-    let (mut parcel, mut format, mut curves_as_ab) = (None, None, false);
+    let (mut parcel, mut format, mut curves_as_ab, mut kml) = (None, None, false, false);
     let (mut from, mut heading, mut to, mut turning) = (None, None, Vec::new(), None);
     let mut i = 0;
     while i < args.len() {
@@ -282,13 +291,14 @@ fn parse_args(args: &[String]) -> Result<Command, Failure> {
             "field-only" => field_only = true,
             "curves-as-ab" => curves_as_ab = true,
             "format" => {
+                kml = value.as_deref() == Some("kml");
                 format = match value.as_deref() {
-                    Some("geojson") => None,
+                    Some("geojson") | Some("kml") => None,
                     Some("isoxml") => Some(TaskDataVersion::V4),
                     Some("isoxml-v3") => Some(TaskDataVersion::V3),
                     v => {
                         return Err(Failure::Usage(format!(
-                            "--format {}: expected geojson, isoxml or isoxml-v3",
+                            "--format {}: expected geojson, kml, isoxml or isoxml-v3",
                             v.unwrap_or_default()
                         )))
                     }
@@ -370,6 +380,7 @@ fn parse_args(args: &[String]) -> Result<Command, Failure> {
         field_only,
         format,
         curves_as_ab,
+        kml,
     })
 }
 
@@ -605,8 +616,8 @@ fn print_help() {
     );
     println!("  --{:<22} {:<13} indent the JSON", "pretty", "");
     println!(
-        "  --{:<22} {:<13} the plan as GeoJSON (default), or as ISOXML TaskData for ISOBUS terminals (zipped TASKDATA/TASKDATA.XML; isoxml-v3 for older ones)",
-        "format", "<geojson|isoxml|isoxml-v3>"
+        "  --{:<22} {:<13} the plan as GeoJSON (default), KML (Google Earth), or ISOXML TaskData for ISOBUS terminals (zipped TASKDATA/TASKDATA.XML; isoxml-v3 for older ones)",
+        "format", "<geojson|kml|isoxml|isoxml-v3>"
     );
     println!(
         "  --{:<22} {:<13} in ISOXML, the headland passes as AB segments, for terminals that take no curves",

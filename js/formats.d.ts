@@ -53,6 +53,12 @@ export function exportTaskData(field: unknown, plan: { features: unknown[] } | s
 export function taskDataXml(field: unknown, plan: { features: unknown[] } | string, options: TaskDataOptions): string;
 
 /**
+ * A plan as KML for Google Earth: folders of the field (boundary, obstacles), the blocks, the
+ * swaths and headland passes (numbered in driving order), the turns and the connections.
+ */
+export function exportKml(field: unknown, plan: { features: unknown[] } | string): string;
+
+/**
  * Loads the readers' module, once, before any other call of this entry (the planner's `init`
  * does not load it). In a browser or worker it fetches furrow_formats_wasm_bg.wasm beside
  * formats.js (where a bundler put it), or what `module_or_path` names; in Node it reads that

@@ -55,6 +55,14 @@ export function taskDataXml(field, plan, options = {}) {
   return taskDataText(...taskDataArguments(field, plan, options));
 }
 
+const planKmlText = formats.guarded("planKmlText");
+
+/** A plan as KML, for Google Earth: see formats.d.ts. */
+export function exportKml(field, plan) {
+  const [fieldText, planText] = taskDataArguments(field, plan, {});
+  return planKmlText(fieldText, planText);
+}
+
 function taskDataArguments(field, plan, options) {
   const fieldText = typeof field === "string" ? field : JSON.stringify(field);
   // The plan's features only: its samples (typed arrays) are not needed.

@@ -3,11 +3,13 @@
 // settings, in versions 4 and 3; the boundary and obstacles within a centimetre, one AB guidance
 // pattern per block with its heading (within 0.01 degrees of the heading its own A and B points
 // give, within 0.05 of the true heading of each of the block's swaths) and the working width, the
-// headland passes as curves.
+// headland passes as curves. And as KML, read back by @tmcw/togeojson (with @xmldom/xmldom).
 import { test } from "node:test";
 import assert from "node:assert/strict";
 import { existsSync, readFileSync } from "node:fs";
 import { ISOXMLManager } from "isoxml";
+import { kml as kmlToGeoJson } from "@tmcw/togeojson";
+import { DOMParser } from "@xmldom/xmldom";
 
 const pkgUrl = new URL("../pkg/", import.meta.url);
 const fieldsUrl = new URL("../tests/fields/", import.meta.url);
@@ -176,4 +178,28 @@ test("version 3 for older terminals: the same lines as guidance line strings of 
   assert.match(xml, /<PFD A="PFD1" C="N_rre mark _ _the long one by th" /);
   assert.throws(() => formats.exportTaskData(field, plan, {}), (e) => e.code === "option_out_of_range");
   assert.throws(() => formats.exportTaskData(field, plan, { width: 6, version: 2 }), (e) => e.code === "invalid_option");
+});
+
+test("every corpus plan exported as KML reads back with @tmcw/togeojson: boundary, obstacles, blocks, swaths and passes", () => {
+  for (const row of corpus()) {
+    const field = JSON.parse(readFileSync(new URL(row.file, fieldsUrl), "utf8"));
+    const plan = furrow.plan(field, { width: row.width, headlandPasses: row.headlandPasses, turnRadius: row.turnRadius });
+    const text = formats.exportKml(field, plan);
+    const read = kmlToGeoJson(new DOMParser().parseFromString(text, "text/xml"));
+    const named = (prefix) => read.features.filter((f) => String(f.properties.name).startsWith(prefix));
+    const [boundary] = named("Boundary");
+    assert.ok(apart(boundary.geometry.coordinates[0], boundaryOf(field)) < 0.01, `${row.file}: boundary`);
+    const planObstacles = plan.features.filter((f) => f.properties.kind === "obstacle");
+    assert.equal(named("Obstacle ").length, planObstacles.length, `${row.file}: obstacles`);
+    for (const [prefix, kind] of [["Block ", "block"], ["Swath ", "swath"], ["Headland pass ", "headland"], ["Turn ", "turn"], ["Connection ", "connection"]]) {
+      const mine = plan.features.filter((f) => f.properties.kind === kind);
+      const theirs = named(prefix);
+      assert.equal(theirs.length, mine.length, `${row.file}: ${kind}`);
+    }
+    // Every swath where the plan has it, by its number in driving order.
+    for (const s of plan.features.filter((f) => f.properties.kind === "swath")) {
+      const [k] = named(`Swath ${s.properties.sequence}`).filter((f) => f.properties.name === `Swath ${s.properties.sequence}`);
+      assert.ok(apart(k.geometry.coordinates, s.geometry.coordinates) < 0.001, `${row.file}: swath ${s.properties.sequence}`);
+    }
+  }
 });

@@ -744,6 +744,11 @@ fn the_plan_goes_to_an_isobus_terminal_as_zipped_isoxml() {
     assert!(text.starts_with("['TASKDATA/TASKDATA.XML']"), "{text}");
     assert!(text.contains(r#"<ISO11783_TaskData VersionMajor="4""#));
     assert!(text.contains(r#"<PFD A="PFD1""#) && text.contains(r#"<GGP A="GGP1" B="Block 1">"#));
+    // KML for Google Earth, on standard output.
+    let out = run(&[&field("l-shape.geojson"), "--format", "kml"]);
+    assert!(out.status.success());
+    let kml = String::from_utf8_lossy(&out.stdout);
+    assert!(kml.starts_with("<?xml") && kml.contains("<Folder><name>Swaths</name>"));
     // Version 3, and a format it does not write.
     let out = run(&[&field("l-shape.geojson"), "--format", "isoxml-v3"]);
     assert!(out.status.success());

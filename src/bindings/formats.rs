@@ -11,6 +11,7 @@
 use super::to_js_error;
 use crate::error::{ErrorCode, PlanError};
 use crate::formats::isoxml::{taskdata_xml, taskdata_zip, TaskDataSettings, TaskDataVersion};
+use crate::formats::plan_kml::plan_kml;
 use crate::formats::{read_field_file, read_shapefile_files};
 use wasm_bindgen::prelude::*;
 
@@ -102,4 +103,10 @@ pub fn task_data_zip(
 ) -> Result<Vec<u8>, JsValue> {
     let settings = taskdata_settings(width, version, curves_as_ab, name)?;
     taskdata_zip(field, plan, &settings).map_err(|e| to_js_error(&e))
+}
+
+/// A plan (its GeoJSON text) of a field (its GeoJSON text) as KML text.
+#[wasm_bindgen(js_name = planKmlText, skip_typescript)]
+pub fn plan_kml_text(field: &str, plan: &str) -> Result<String, JsValue> {
+    plan_kml(field, plan).map_err(|e| to_js_error(&e))
 }

@@ -24,8 +24,8 @@
 //! # Ok::<(), furrow::PlanError>(())
 //! ```
 
+use super::outline::{field_outline, line_of, plan_features, LonLat};
 use crate::error::{ErrorCode, PlanError};
-use crate::field::{Coordinates, Field};
 use geo::{Bearing, Geodesic, Point};
 use quick_xml::events::{BytesDecl, BytesEnd, BytesStart, Event};
 use serde_json::Value;
@@ -63,9 +63,6 @@ impl Default for TaskDataSettings {
         }
     }
 }
-
-/// Longitude, latitude in degrees.
-type LonLat = [f64; 2];
 
 /// A block's guidance: its designator and the AB line along its longest swath.
 struct BlockLine {
@@ -112,49 +109,20 @@ pub fn taskdata_zip(
 }
 
 fn read_export(field: &str, plan: &str, settings: &TaskDataSettings) -> Result<Export, PlanError> {
-    let (field, _) = Field::from_geojson_str_in(field, Coordinates::Wgs84)?;
-    let plan: Value = serde_json::from_str(plan).map_err(|_| {
-        PlanError::new(
-            ErrorCode::InvalidJson,
-            "the plan is not JSON: give the plan's GeoJSON as planned",
-        )
-    })?;
-    let features = plan["features"].as_array().ok_or_else(|| {
-        PlanError::new(
-            ErrorCode::InvalidGeojson,
-            "the plan has no features: give the plan's GeoJSON as planned",
-        )
-    })?;
-    let ring = |r: &geo::LineString| -> Vec<LonLat> {
-        r.0.iter().map(|&c| field.frame.to_input(c)).collect()
-    };
+    let outline = field_outline(field)?;
+    let features = plan_features(plan)?;
     let name = settings
         .name
         .clone()
-        .or_else(|| field.name.clone())
+        .or(outline.name)
         .unwrap_or_else(|| "Field".to_string());
     Ok(Export {
         name,
-        // The boundary as drawn: before the planner's repairs (repeated and collinear vertices,
-        // spikes) and simplification.
-        boundary: vec![field
-            .drawn_boundary
-            .iter()
-            .map(|&c| field.frame.to_input(c))
-            .collect()],
-        obstacles: field
-            .obstacles
-            .iter()
-            .map(|o| {
-                std::iter::once(o.polygon.exterior())
-                    .chain(o.polygon.interiors())
-                    .map(ring)
-                    .collect()
-            })
-            .collect(),
-        area_m2: geo::Area::unsigned_area(&field.boundary),
-        blocks: block_lines(features),
-        passes: headland_passes(features),
+        boundary: vec![outline.boundary],
+        obstacles: outline.obstacles,
+        area_m2: outline.area_m2,
+        blocks: block_lines(&features),
+        passes: headland_passes(&features),
     })
 }
 
@@ -217,14 +185,6 @@ fn headland_passes(features: &[Value]) -> Vec<(String, Vec<LonLat>)> {
             Some((name, line_of(&f["geometry"])?))
         })
         .filter(|(_, line)| line.len() >= 2)
-        .collect()
-}
-
-fn line_of(geometry: &Value) -> Option<Vec<LonLat>> {
-    geometry["coordinates"]
-        .as_array()?
-        .iter()
-        .map(|p| Some([p[0].as_f64()?, p[1].as_f64()?]))
         .collect()
 }
 

@@ -12,10 +12,14 @@
 //! - [`taskdata`]: the partfields of ISOXML TaskData (and of its zip), with their guidance.
 //! - [`crs`]: the coordinate systems they come in, converted to WGS84.
 //! - [`isoxml`]: a plan written as ISO 11783-10 TaskData, for ISOBUS terminals.
+//! - [`plan_kml`]: a plan written as KML, for Google Earth.
+//! - [`outline`]: what both start from, the field's outline and the plan's features.
 
 pub mod crs;
 pub mod isoxml;
 pub mod kml;
+pub mod outline;
+pub mod plan_kml;
 pub mod shapefile;
 pub mod taskdata;
 pub mod zip;
