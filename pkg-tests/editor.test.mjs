@@ -8,6 +8,8 @@
 import { test } from "node:test";
 import assert from "node:assert/strict";
 import { ISOXMLManager } from "isoxml";
+import { kml as kmlToGeoJson } from "@tmcw/togeojson";
+import { DOMParser } from "@xmldom/xmldom";
 import { mkdirSync, readFileSync } from "node:fs";
 import { join } from "node:path";
 import {
@@ -228,6 +230,11 @@ test("editor: import a corpus file and export it again equal; export the plan", 
     assert.equal(pfd.PolygonnonTreatmentZoneonly.filter((p) => p.attributes.PolygonType === "1").length, 1);
     const blocks = new Set(plan.features.filter((f) => f.properties.kind === "swath").map((f) => f.properties.block));
     assert.equal(pfd.GuidanceGroup.filter((g) => g.attributes.GuidanceGroupDesignator.startsWith("Block ")).length, blocks.size);
+    // And for Google Earth: KML read back by @tmcw/togeojson, a placemark per swath.
+    const [kmlFile] = await Promise.all([page.waitForEvent("download"), page.click("#export-kml")]);
+    assert.match(kmlFile.suggestedFilename(), /-plan\.kml$/);
+    const kml = kmlToGeoJson(new DOMParser().parseFromString(readFileSync(await kmlFile.path(), "utf8"), "text/xml"));
+    assert.equal(kml.features.filter((f) => /^Swath \d+$/.test(f.properties.name)).length, plan.summary.swath_count);
   });
 });
 

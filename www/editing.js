@@ -222,6 +222,7 @@ export function showEditState() {
   $("export-field").disabled = !editable && !parcelFile();
   $("export-plan").disabled = !state.plan;
   $("export-isoxml").disabled = !state.plan;
+  $("export-kml").disabled = !state.plan;
   const hints = {
     edit: "Drag a corner; tap the mark in the middle of an edge to add one; tap a corner or region, then Delete.",
     boundary: `Field: tap its corners${tool.draft.length >= 3 ? "; tap the first again or Finish to close" : ""}.`,

@@ -273,6 +273,18 @@ export async function saveTaskData(width) {
   }
 }
 
+/** Saves the plan as KML for Google Earth, written by furrow/formats. */
+export async function saveKml() {
+  if (!state.plan) return;
+  const plan = state.plan;
+  try {
+    const formats = await loadFormats();
+    download(`${fileName()}-plan.kml`, formats.exportKml(fieldText(), plan), "application/vnd.google-earth.kml+xml");
+  } catch (e) {
+    ui.status.textContent = `The plan could not be saved as KML: ${sentence(e?.message ?? String(e))}`;
+  }
+}
+
 export function download(name, text, type = "application/geo+json") {
   if (!text || !text.length) return;
   const url = URL.createObjectURL(new Blob([text], { type }));

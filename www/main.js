@@ -28,6 +28,7 @@ import {
   openParcels,
   openedOption,
   planText,
+  saveKml,
   saveTaskData,
   selectField,
 } from "./fields.js";
@@ -212,6 +213,7 @@ function bindControls() {
     if (state.plan) download(`${fileName()}-plan.geojson`, planText());
   });
   $("export-isoxml").addEventListener("click", () => saveTaskData(readOptions().options.width));
+  $("export-kml").addEventListener("click", saveKml);
   // On a phone (or a short screen) the headland and obstacle options start folded, so that the
   // map (or the plan's figures) are in view; their values show beside the title.
   if (matchMedia("(max-width: 760px), (max-height: 860px)").matches) ui.more.open = false;
