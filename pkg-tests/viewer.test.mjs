@@ -677,7 +677,12 @@ test("viewer: opens field files; errors and warnings in words beside the feature
     // The file picker: a rectangle whose boundary is left open and runs clockwise plans with two
     // warnings on feature 0, grouped under one small badge on its outline.
     const [chooser] = await Promise.all([page.waitForEvent("filechooser"), page.click("#open-file")]);
-    assert.equal(await page.getAttribute("#file-input", "accept"), ".geojson,.json,application/geo+json");
+    // GeoJSON, and the field files of furrow/formats: zipped Shapefiles or their parts, KML, KMZ,
+    // ISOXML TaskData.
+    const accept = (await page.getAttribute("#file-input", "accept")).split(",");
+    for (const type of [".geojson", ".json", "application/geo+json", ".zip", ".kml", ".kmz", ".xml", ".shp", ".shx", ".dbf", ".prj"]) {
+      assert.ok(accept.includes(type), `the file picker offers ${type}`);
+    }
     await chooser.setFiles({
       name: "rectangle-open-clockwise.geojson",
       mimeType: "application/geo+json",
