@@ -32,7 +32,7 @@ export function readShapefile(files: Iterable<{ name: string; bytes: Uint8Array 
 export interface TaskDataOptions {
   /** The implement's working width, metres (the plan's `width`): the guidance lines' swath width. */
   width: number;
-  /** 4 (the default: guidance groups and patterns) or 3 for older terminals. */
+  /** 4 (the default: guidance groups and patterns, the headland polygon) or 3 for older terminals. */
   version?: 3 | 4;
   /** The headland passes as AB segments, for terminals that take no curves. */
   curvesAsAb?: boolean;
@@ -42,7 +42,8 @@ export interface TaskDataOptions {
 
 /**
  * A plan as ISO 11783-10 TaskData for an ISOBUS terminal, zipped as `TASKDATA/TASKDATA.XML`:
- * a partfield with the field's boundary and obstacles, a guidance group per block with an AB
+ * a partfield with the field's boundary and obstacles (and, in version 4, the headland's inner
+ * edge), a guidance group per block with an AB
  * line along its swaths, and the headland passes as curves (version 3: the same lines as
  * guidance line strings of the partfield). `field` is the field's GeoJSON as planned (WGS84), `plan` the result of `plan` (or
  * its GeoJSON text).

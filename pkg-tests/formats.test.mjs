@@ -71,6 +71,19 @@ function heading(a, b) {
   return ((Math.atan2(y, x) / rad) % 360 + 360) % 360;
 }
 
+/** The area of a [lon, lat] ring, square metres (flat near its first point). */
+function ringArea(ring) {
+  const k = (Math.PI / 180) * 6_371_000;
+  const c = Math.cos((ring[0][1] * Math.PI) / 180);
+  const xy = ring.map(([lon, lat]) => [lon * k * c, lat * k]);
+  let twice = 0;
+  for (let i = 0; i < xy.length; i++) {
+    const [a, b] = [xy[i], xy[(i + 1) % xy.length]];
+    twice += a[0] * b[1] - b[0] * a[1];
+  }
+  return Math.abs(twice / 2);
+}
+
 /** The smallest angle between two directions of travel or their reverses, degrees. */
 function lineAngle(a, b) {
   const d = (((a - b) % 180) + 180) % 180;
@@ -118,6 +131,17 @@ test("every corpus plan exported as ISOXML v4 reads back with the isoxml package
       const d = apart(points(o.attributes.LineString[0]), planObstacles[i].geometry.coordinates[0]);
       assert.ok(d < 0.01, `${row.file}: obstacle ${i} ${d} m off`);
     });
+    // The headland's inner edge (type 10): the inner field's area within 3 % (the passes are
+    // rounded at the turning radius where the inner field keeps its corners).
+    const headland = polygons.filter((p) => p.attributes.PolygonType === "10");
+    const passesRound = plan.features.some((f) => f.properties.kind === "headland" && f.properties.around === "field" && f.properties.closed);
+    if (passesRound) {
+      const area = headland.reduce((sum, p) => sum + p.attributes.LineString.reduce((s, l) => s + (l.attributes.LineStringType === "1" ? 1 : -1) * ringArea(points(l)), 0), 0);
+      const inner = plan.summary.inner_field_area_m2;
+      assert.ok(Math.abs(area - inner) <= 0.03 * inner, `${row.file}: headland edge holds ${area} m², the inner field ${inner} m²`);
+    } else {
+      assert.equal(headland.length, 0, `${row.file}: no headland polygon without passes round the field`);
+    }
     // One guidance group per block with swaths, an AB line each.
     const blocks = plan.features.filter((f) => f.properties.kind === "block");
     const withSwaths = new Set(plan.features.filter((f) => f.properties.kind === "swath").map((f) => f.properties.block));

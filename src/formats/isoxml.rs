@@ -1,9 +1,9 @@
 //! A plan as ISO 11783-10 TaskData (ISOXML), the file every ISOBUS terminal imports: one
 //! partfield with the field's boundary (`PLN` type 1) and its obstacles (type 6); in version 4
-//! a guidance group per block with an AB line along its swaths (heading and swath width,
-//! extended both ways), and one of the headland passes as curves (or as AB segments, for
-//! terminals that take no curves). The headland polygon (type 10) is not written: the plan's
-//! GeoJSON does not carry the inner field it bounds. Version 3 has no guidance groups:
+//! the headland's inner edge (type 10), a guidance group per block with an AB line along its
+//! swaths (heading and swath width, extended both ways), and one of the headland passes as
+//! curves (or as AB segments, for terminals that take no curves). Version 3 has no guidance
+//! groups:
 //! the lines go as `LSG` type 5 under the partfield, as older terminals read them. Written with
 //! `quick-xml` and zipped as `TASKDATA/TASKDATA.XML`.
 //!
@@ -24,7 +24,7 @@
 //! # Ok::<(), furrow::PlanError>(())
 //! ```
 
-use super::outline::{field_outline, line_of, plan_features, LonLat};
+use super::outline::{field_outline, headland_edge, line_of, plan_features, LonLat};
 use crate::error::{ErrorCode, PlanError};
 use geo::{Bearing, Geodesic, Point};
 use quick_xml::events::{BytesDecl, BytesEnd, BytesStart, Event};
@@ -35,7 +35,7 @@ use serde_json::Value;
 pub enum TaskDataVersion {
     /// Version 3, for older terminals: guidance lines as line strings of the partfield.
     V3,
-    /// Version 4 (4.3): guidance groups and patterns.
+    /// Version 4 (4.3): guidance groups and patterns, the headland polygon.
     #[default]
     V4,
 }
@@ -79,6 +79,8 @@ struct Export {
     area_m2: f64,
     blocks: Vec<BlockLine>,
     passes: Vec<(String, Vec<LonLat>)>,
+    /// The headland's inner edge (version 4's polygon of type 10).
+    headland: Vec<Vec<Vec<LonLat>>>,
 }
 
 /// The TaskData of a plan (`plan`: its GeoJSON text) of `field` (the field's GeoJSON as it was
@@ -114,10 +116,12 @@ fn read_export(field: &str, plan: &str, settings: &TaskDataSettings) -> Result<E
     let name = settings
         .name
         .clone()
-        .or(outline.name)
+        .or_else(|| outline.name.clone())
         .unwrap_or_else(|| "Field".to_string());
+    let headland = headland_edge(&outline, &features, settings.width_m);
     Ok(Export {
         name,
+        headland,
         boundary: vec![outline.boundary],
         obstacles: outline.obstacles,
         area_m2: outline.area_m2,
@@ -227,6 +231,9 @@ fn write_xml(export: &Export, settings: &TaskDataSettings) -> String {
         polygon(&mut w, &mut ids, "6", &format!("Obstacle {}", i + 1), o, v4);
     }
     if v4 {
+        for rings in &export.headland {
+            polygon(&mut w, &mut ids, "10", "Headland", rings, v4);
+        }
         guidance_groups(&mut w, &mut ids, export, settings);
     } else {
         guidance_lines_v3(&mut w, export, settings);
