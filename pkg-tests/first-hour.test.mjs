@@ -331,7 +331,7 @@ test("first hour: a 1.2 M-vertex file is refused within 3 s without holding up t
   }
 });
 
-test("first hour: a zipped Shapefile in RD New opens as its parcels where the register has them; its parts chosen together open the same; KML and TaskData too; a cut one is refused", { timeout: TIMEOUT }, async () => {
+test("first hour: a zipped Shapefile in RD New opens as its parcels where the register has them; its parts chosen together open the same; KML, KMZ and TaskData too; a cut one is refused", { timeout: TIMEOUT }, async () => {
   const fixtures = join(FIELDS, "..", "format-fixtures");
   const register = JSON.parse(readFileSync(join(FIELDS, "real/nl_brp_2023_sample.geojson"), "utf8"));
   const dir = join(SHOTS, "..", "first-hour-shapefile");
@@ -367,11 +367,13 @@ test("first hour: a zipped Shapefile in RD New opens as its parcels where the re
       assert.equal(ring.length, want.length);
       const off = Math.max(...ring.map((p) => Math.min(...want.map((q) => Math.hypot((p[0] - q[0]) * 68_500, (p[1] - q[1]) * 111_200)))));
       assert.ok(off < 0.01, `a corner read ${off} m from the register's`);
-      // Google Earth's KML (written by GDAL): the Danish register's parcels by their names.
-      await open(join(fixtures, "dk_marker.kml"));
-      await page.waitForSelector("body[data-plan-state=pick]");
+      // Google Earth's KML and KMZ (written by GDAL): the Danish register's parcels by their names.
       const danish = JSON.parse(readFileSync(join(FIELDS, "real/dk_marker_2026_sample.geojson"), "utf8"));
-      assert.deepEqual(await names(), danish.features.map((f) => f.properties.id));
+      for (const file of ["dk_marker.kml", "dk_marker.kmz"]) {
+        await open(join(fixtures, file));
+        await page.waitForSelector("body[data-plan-state=pick]");
+        assert.deepEqual(await names(), danish.features.map((f) => f.properties.id), file);
+      }
       // An ISOBUS terminal's TaskData (written by the npm isoxml package): its partfields.
       await open(join(fixtures, "dk_marker_taskdata_v4.zip"));
       await page.waitForSelector("body[data-plan-state=pick]");
