@@ -350,11 +350,18 @@ test("first hour: a zipped Shapefile in RD New opens as its parcels where the re
         const [chooser] = await Promise.all([page.waitForEvent("filechooser"), page.click("#open-file")]);
         await chooser.setFiles(paths);
       };
+      // Opens a file of parcels and waits for its own list (not the one of the file before).
+      const openParcels = async (paths) => {
+        await page.evaluate(() => (window.__listBefore = window.furrow.parcels.features));
+        await open(paths);
+        await page.waitForFunction(
+          () => document.body.dataset.planState === "pick" && window.furrow.parcels.features !== window.__listBefore,
+        );
+      };
       const names = () => page.$$eval("#parcels-list button .parcel-name", (n) => n.map((e) => e.textContent));
       const ids = register.features.map((f) => f.properties.id);
       for (const paths of [zip, ["shp", "shx", "dbf", "prj"].map((ext) => join(dir, `nl_brp_rd_new.${ext}`))]) {
-        await open(paths);
-        await page.waitForSelector("body[data-plan-state=pick]");
+        await openParcels(paths);
         assert.deepEqual(await names(), ids, "every parcel, by its id, in the file's order");
       }
       // The first parcel, picked, plans where the register has it (RD New read with its datum
@@ -370,13 +377,11 @@ test("first hour: a zipped Shapefile in RD New opens as its parcels where the re
       // Google Earth's KML and KMZ (written by GDAL): the Danish register's parcels by their names.
       const danish = JSON.parse(readFileSync(join(FIELDS, "real/dk_marker_2026_sample.geojson"), "utf8"));
       for (const file of ["dk_marker.kml", "dk_marker.kmz"]) {
-        await open(join(fixtures, file));
-        await page.waitForSelector("body[data-plan-state=pick]");
+        await openParcels(join(fixtures, file));
         assert.deepEqual(await names(), danish.features.map((f) => f.properties.id), file);
       }
       // An ISOBUS terminal's TaskData (written by the npm isoxml package): its partfields.
-      await open(join(fixtures, "dk_marker_taskdata_v4.zip"));
-      await page.waitForSelector("body[data-plan-state=pick]");
+      await openParcels(join(fixtures, "dk_marker_taskdata_v4.zip"));
       assert.deepEqual(await names(), danish.features.map((f) => f.properties.id));
       // A download cut short: a typed error, nothing planned.
       await open(cut);
