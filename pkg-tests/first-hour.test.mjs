@@ -383,6 +383,16 @@ test("first hour: a zipped Shapefile in RD New opens as its parcels where the re
       // An ISOBUS terminal's TaskData (written by the npm isoxml package): its partfields.
       await openParcels(join(fixtures, "dk_marker_taskdata_v4.zip"));
       assert.deepEqual(await names(), danish.features.map((f) => f.properties.id));
+      // A partfield picked plans along its AB line (written along its first edge).
+      await page.click(`#parcels-list button:has-text("${danish.features[0].properties.id}")`);
+      await planned(page);
+      const picked = await page.evaluate(() => ({
+        mode: window.furrow.plan.summary.direction.mode,
+        line: window.furrow.document.features.find((f) => f.properties.role === "reference_line")?.geometry.coordinates,
+      }));
+      assert.equal(picked.mode, "reference");
+      assert.deepEqual(picked.line, danish.features[0].geometry.coordinates[0].slice(0, 2));
+      await page.click("#parcels-back");
       // A download cut short: a typed error, nothing planned.
       await open(cut);
       await page.waitForSelector("body[data-plan-state=error] #map-message[data-code=invalid_file]");

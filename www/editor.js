@@ -37,6 +37,12 @@ export function toCollection(input) {
   for (const hole of polygon.slice(1)) {
     features.push({ type: "Feature", properties: { role: "obstacle" }, geometry: { type: "Polygon", coordinates: [clone(hole)] } });
   }
+  // A parcel's AB line (a TaskData partfield's, read by furrow/formats): the field's AB line.
+  const line = properties.reference_line;
+  const position = (p) => Array.isArray(p) && p.length >= 2 && p.every(Number.isFinite);
+  if (Array.isArray(line) && line.length === 2 && line.every(position)) {
+    features.push({ type: "Feature", properties: { role: "reference_line" }, geometry: { type: "LineString", coordinates: clone(line) } });
+  }
   return { type: "FeatureCollection", features };
 }
 

@@ -8,7 +8,8 @@ import { forgetParcels, parcelFeatures, parcelFile, showParcels } from "./parcel
 import { replan, showFailure } from "./planning.js";
 import { loadFormats, readLimit, sizeError } from "./reading.js";
 import { fieldParts, fieldScene, inputFeatures, parseForDrawing, projectFeature, projectionFor } from "./scene.js";
-import { applySuggested, forgetFieldReferences } from "./settings.js";
+import { referenceLineOf } from "./editor.js";
+import { applySuggested, forgetFieldReferences, showDependentInputs } from "./settings.js";
 
 /** The value of the field picker's entry for an opened file. */
 export const OPENED = ":opened";
@@ -122,6 +123,12 @@ export async function loadField(input, name = "Opened field", { edited = false, 
   if (!parcel) forgetParcels();
   const parcels = !edited && !parcel && parcelFeatures(state.field);
   if (!edited) forgetFieldReferences();
+  // A parcel picked with its own AB line (a TaskData partfield's, the terminal's line) is
+  // planned along it.
+  if (parcel && state.field?.type === "FeatureCollection" && referenceLineOf(state.field)) {
+    ui.inputs.direction.value = "line";
+    showDependentInputs();
+  }
   state.edited = edited;
   openedOption(name);
   ui.field.value = OPENED;
