@@ -315,8 +315,7 @@ fn ab_pattern(w: &mut Xml, ids: &mut Ids, name: &str, a: LonLat, b: LonLat, widt
         ],
     );
     w.start("LSG", &[("A", "5".into()), ("C", width.to_string())]);
-    point(w, "6", a);
-    point(w, "7", b);
+    guidance_points(w, &[a, b]);
     w.end("LSG");
     w.end("GPN");
 }
@@ -334,22 +333,22 @@ fn curve_pattern(w: &mut Xml, ids: &mut Ids, name: &str, line: &[LonLat], width:
         ],
     );
     w.start("LSG", &[("A", "5".into()), ("C", width.to_string())]);
-    let last = line.len() - 1;
-    for (i, &p) in line.iter().enumerate() {
-        point(
-            w,
-            if i == 0 {
-                "6"
-            } else if i == last {
-                "7"
-            } else {
-                "9"
-            },
-            p,
-        );
-    }
+    guidance_points(w, line);
     w.end("LSG");
     w.end("GPN");
+}
+
+/// A guidance line's points: A (type 6), the points between (9), B (7).
+fn guidance_points(w: &mut Xml, line: &[LonLat]) {
+    let last = line.len().saturating_sub(1);
+    for (i, &p) in line.iter().enumerate() {
+        let kind = match i {
+            0 => "6",
+            _ if i == last => "7",
+            _ => "9",
+        };
+        point(w, kind, p);
+    }
 }
 
 /// Version 3: each block's AB line and each headland pass as a guidance line string of the
@@ -365,20 +364,7 @@ fn guidance_lines_v3(w: &mut Xml, export: &Export, settings: &TaskDataSettings) 
                 ("C", width.clone()),
             ],
         );
-        let last = points.len() - 1;
-        for (i, &p) in points.iter().enumerate() {
-            point(
-                w,
-                if i == 0 {
-                    "6"
-                } else if i == last {
-                    "7"
-                } else {
-                    "9"
-                },
-                p,
-            );
-        }
+        guidance_points(w, points);
         w.end("LSG");
     };
     for block in &export.blocks {

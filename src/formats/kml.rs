@@ -58,19 +58,7 @@ fn collect(kml: &Kml<f64>, parcels: &mut Vec<Parcel>, placemarks: &mut usize) {
             if let Some(g) = &p.geometry {
                 polygons_of(g, &mut polygons);
             }
-            let properties = properties_of(p);
-            let parts = polygons.len();
-            for (part, polygon) in polygons.into_iter().enumerate() {
-                let mut properties = properties.clone();
-                if parts > 1 {
-                    properties.insert("part".into(), Value::from(part));
-                }
-                parcels.push(Parcel {
-                    polygon,
-                    properties,
-                    record,
-                });
-            }
+            parcels.extend(Parcel::parts(polygons, &properties_of(p), record));
         }
         _ => {}
     }

@@ -44,6 +44,32 @@ pub struct Parcel {
     pub record: usize,
 }
 
+impl Parcel {
+    /// The parcels of one record of a file (a Shapefile record, a placemark): each of its
+    /// polygons, with the record's properties and, where it has several, `part`.
+    pub fn parts(
+        polygons: Vec<Polygon>,
+        properties: &Map<String, Value>,
+        record: usize,
+    ) -> impl Iterator<Item = Parcel> + '_ {
+        let several = polygons.len() > 1;
+        polygons
+            .into_iter()
+            .enumerate()
+            .map(move |(part, polygon)| {
+                let mut properties = properties.clone();
+                if several {
+                    properties.insert("part".into(), Value::from(part));
+                }
+                Parcel {
+                    polygon,
+                    properties,
+                    record,
+                }
+            })
+    }
+}
+
 /// What a field file holds.
 #[derive(Debug, Clone)]
 pub struct FieldFile {

@@ -49,18 +49,7 @@ pub fn read_shapefile(parts: ShapefileParts<'_>) -> Result<(Vec<Parcel>, Crs), P
     for (index, rings) in shapes.into_iter().enumerate() {
         let properties = records.get(index).cloned().unwrap_or_default();
         let polygons = polygons_of(rings, &crs)?;
-        let parts = polygons.len();
-        for (part, polygon) in polygons.into_iter().enumerate() {
-            let mut properties = properties.clone();
-            if parts > 1 {
-                properties.insert("part".into(), Value::from(part));
-            }
-            parcels.push(Parcel {
-                polygon,
-                properties,
-                record: index,
-            });
-        }
+        parcels.extend(Parcel::parts(polygons, &properties, index));
     }
     if parcels.is_empty() {
         return Err(PlanError::new(
