@@ -1,5 +1,5 @@
 // Assembles target/bench/report.md from what scripts/bench.sh measured:
-//   target/bench/{quality,stages,scaling,wasm}.json (examples/report.rs, scripts/bench-wasm.mjs)
+//   target/bench/{quality,stages,scaling,wasm}.json (examples/report/, scripts/bench-wasm.mjs)
 //   target/criterion/plan/<field>/new/estimates.json (cargo bench --bench plan)
 //   target/criterion/stage-<stage>/<field>/new/estimates.json (cargo bench --bench stages)
 //

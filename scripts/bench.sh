@@ -2,7 +2,7 @@
 # The benchmarks and the plan-quality report (not part of the test run): writes
 # target/bench/report.md with its SVG plots and pictures.
 #   - the quality of every corpus plan, pictures of each, the time of each stage, and how the
-#     time grows with the field's size (examples/report.rs);
+#     time grows with the field's size (examples/report/);
 #   - the whole plan natively (criterion, benches/plan.rs), the stages that run alone
 #     (benches/stages.rs), and shortest paths along tracks (benches/tracks.rs);
 #   - the wasm package's plan() from JavaScript in Node and headless Chromium, its memory and
@@ -16,7 +16,7 @@ started=$(date +%s)
 quick=()
 [[ "${QUICK:-}" == 1 ]] && quick=(--quick)
 mkdir -p target/bench
-echo "== quality, stages and scaling (examples/report.rs)"
+echo "== quality, stages and scaling (examples/report/)"
 cargo run --release --quiet --example report -- --out target/bench "${quick[@]}"
 echo "== the whole plan natively (criterion)"
 measure=(--warm-up-time 1 --measurement-time 2 --sample-size 10)

@@ -33,6 +33,24 @@ lints() {
   cargo clippy --target wasm32-unknown-unknown --features small-alloc --lib --test wasm --quiet -- -D warnings
 }
 step "lints" lints
+# Every source file under 1,000 lines, a Rust file's before its tests.
+file_lengths() {
+  local long
+  long=$(find src examples tests benches www js pkg-tests scripts \
+      \( -name '*.rs' -o -name '*.js' -o -name '*.mjs' -o -name '*.ts' -o -name '*.py' -o -name '*.sh' \) \
+      -not -path 'tests/fields/*' -print0 |
+    xargs -0 awk 'FNR == 1 { if (name != "" && n > 1000) print name ": " n " lines"; name = FILENAME; n = 0; done = 0 }
+      done { next }
+      /^mod tests \{/ && prev ~ /^#\[cfg\(test\)\]/ { done = 1; n--; next }
+      { n++; prev = $0 }
+      END { if (n > 1000) print name ": " n " lines" }')
+  if [ -n "$long" ]; then
+    echo "files over 1,000 lines (before their tests):"
+    echo "$long"
+    return 1
+  fi
+}
+step "file lengths" file_lengths
 step "native tests" cargo test
 # Every worst-case input plans or is refused within 60 s and 4 GB (a hang check, in release).
 step "termination (release)" cargo test --release --test termination -- --ignored every_case_plans_or_is_refused_in_time
