@@ -124,6 +124,21 @@ pub fn turn_length(spacing: f64, radius: f64) -> f64 {
     }
 }
 
+/// What the three-point (fishtail) turn between swaths `spacing` apart costs, metres: a quarter
+/// circle forward, straight back `2r − d`, a quarter circle forward, and a change of gear at
+/// each end of the stretch back ([`crate::path::turn::CUSP_PENALTY_M`] each).
+///
+/// ```
+/// use furrow::objective::three_point_length;
+/// use std::f64::consts::PI;
+///
+/// assert!((three_point_length(6.0, 8.0) - (8.0 * PI + 10.0 + 10.0)).abs() < 1e-9);
+/// ```
+pub fn three_point_length(spacing: f64, radius: f64) -> f64 {
+    let (d, r) = (spacing.abs(), radius.max(0.0));
+    PI * r + (2.0 * r - d).max(0.0) + 2.0 * crate::path::turn::CUSP_PENALTY_M
+}
+
 /// [`turn_length`] at one turning radius, remembering the last few spacings: the turns of a
 /// block are mostly between neighbouring swaths, one spacing apart (a snake that skips swaths
 /// alternates between two or three), and the length is an arc cosine (a routine in software in
@@ -143,6 +158,12 @@ pub fn turn_length(spacing: f64, radius: f64) -> f64 {
 #[derive(Debug, Clone, Copy)]
 pub struct TurnLengths {
     radius: f64,
+    /// Whether the machine may reverse: close swaths are then joined by the three-point turn
+    /// where it is cheaper than the loop.
+    reverses: bool,
+    /// The headland's depth, metres: a turn that does not fit it ([`TurnLengths::between`])
+    /// weighs more. Infinite: any turn fits.
+    headland_m: f64,
     /// Spacings (absolute) and their lengths, the most recent at `next - 1`; NaN where empty.
     recent: [(f64, f64); TURN_LENGTHS_KEPT],
     next: usize,
@@ -154,8 +175,25 @@ const TURN_LENGTHS_KEPT: usize = 4;
 impl TurnLengths {
     /// Turn lengths at this turning radius.
     pub fn new(radius: f64) -> Self {
+        TurnLengths::of_machine(radius, false)
+    }
+
+    /// Turn lengths at this turning radius for a machine that reverses or not: one that does
+    /// joins swaths closer than twice the radius by the three-point turn where it costs less
+    /// than the loop ([`three_point_length`]).
+    ///
+    /// ```
+    /// use furrow::objective::{three_point_length, turn_length, TurnLengths};
+    ///
+    /// let mut reversing = TurnLengths::of_machine(8.0, true);
+    /// assert_eq!(reversing.of(6.0), three_point_length(6.0, 8.0));
+    /// assert_eq!(reversing.of(20.0), turn_length(20.0, 8.0));
+    /// ```
+    pub fn of_machine(radius: f64, reverses: bool) -> Self {
         TurnLengths {
             radius,
+            reverses,
+            headland_m: f64::INFINITY,
             recent: [(f64::NAN, f64::NAN); TURN_LENGTHS_KEPT],
             next: 0,
         }
@@ -169,11 +207,92 @@ impl TurnLengths {
         if let Some(&(_, length)) = self.recent.iter().find(|(at, _)| *at == d) {
             return length;
         }
-        let length = turn_length(d, self.radius);
+        let mut length = turn_length(d, self.radius);
+        if self.reverses && d < 2.0 * self.radius {
+            length = length.min(three_point_length(d, self.radius));
+        }
         self.recent[self.next] = (d, length);
         self.next = (self.next + 1) % TURN_LENGTHS_KEPT;
         length
     }
+
+    /// These turn lengths where the turns must keep to a headland `depth` metres deep.
+    pub fn within(self, depth: f64) -> Self {
+        TurnLengths {
+            headland_m: depth,
+            ..self
+        }
+    }
+
+    /// The turn model's cost from the end of one swath into the next, `spacing` apart across
+    /// and their ends `stagger` apart along the swaths: the turn and the stagger, and
+    /// [`MISFIT_TURN_FACTOR`] times that where the turn does not fit the headland. Between
+    /// ends staggered along an oblique headland edge, the turn is made beyond the farther end:
+    /// it reaches the stagger and the turn's own depth ([`forward_turn_depth`], or the radius
+    /// for a three-point turn) beyond the nearer end, where the headland measured along the
+    /// swaths is `depth · √(spacing² + stagger²) / spacing` deep.
+    ///
+    /// ```
+    /// use furrow::objective::{turn_length, TurnLengths, MISFIT_TURN_FACTOR};
+    ///
+    /// // Two passes of 6 m: a U-turn 18 m across between level ends fits, a loop does not;
+    /// // the U-turn between ends 36 m apart along an edge at 27° to the swaths does not either.
+    /// let mut drill = TurnLengths::new(8.0).within(12.0);
+    /// assert_eq!(drill.between(18.0, 0.0), turn_length(18.0, 8.0));
+    /// assert_eq!(drill.between(6.0, 0.0), MISFIT_TURN_FACTOR * turn_length(6.0, 8.0));
+    /// assert_eq!(drill.between(18.0, 36.0), MISFIT_TURN_FACTOR * (turn_length(18.0, 8.0) + 36.0));
+    /// // A machine that reverses turns into the neighbour 6 m across, 12 m further on.
+    /// let mut reversing = TurnLengths::of_machine(8.0, true).within(12.0);
+    /// assert!(reversing.between(6.0, 12.0) < reversing.between(18.0, 36.0) / MISFIT_TURN_FACTOR);
+    /// ```
+    pub fn between(&mut self, spacing: f64, stagger: f64) -> f64 {
+        let cost = self.of(spacing) + stagger.abs();
+        if self.fits(spacing.abs(), stagger.abs()) {
+            cost
+        } else {
+            cost * MISFIT_TURN_FACTOR
+        }
+    }
+
+    /// Whether the turn between swaths `s` apart with ends `d` apart along them keeps to the
+    /// headland (see [`TurnLengths::between`]).
+    fn fits(&self, s: f64, d: f64) -> bool {
+        if !self.headland_m.is_finite() || s <= 0.0 {
+            return true;
+        }
+        let r = self.radius;
+        let depth = if self.reverses && s < 2.0 * r {
+            r
+        } else {
+            forward_turn_depth(s, r)
+        };
+        d + depth <= self.headland_m * s.hypot(d) / s
+    }
+}
+
+/// How many times its cost a turn that does not fit the headland weighs in the choice of a
+/// block's pattern ([`TurnLengths::between`]): it drives over crop or out of the field, so a
+/// pattern whose turns fit is taken unless it drives much further.
+pub const MISFIT_TURN_FACTOR: f64 = 3.0;
+
+/// How far beyond the swath ends a forward turn between swaths `spacing` apart reaches,
+/// metres: a U of the turning radius where they are two radii apart or more, else a loop
+/// (three arcs of the radius, the middle one away from the swaths).
+///
+/// ```
+/// use furrow::objective::forward_turn_depth;
+///
+/// assert_eq!(forward_turn_depth(20.0, 8.0), 8.0);
+/// assert!((forward_turn_depth(12.0, 8.0) - (8.0 + 60f64.sqrt())).abs() < 1e-9);
+/// ```
+pub fn forward_turn_depth(spacing: f64, radius: f64) -> f64 {
+    if spacing >= 2.0 * radius {
+        return radius;
+    }
+    // The middle arc's centre: two radii from the centres of the end arcs, which lie a
+    // radius beyond each swath's line, away from the other.
+    let half = (spacing + 2.0 * radius) / 2.0;
+    radius + ((2.0 * radius).powi(2) - half * half).max(0.0).sqrt()
 }
 
 /// A cost to minimise over driving directions.

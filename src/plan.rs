@@ -622,6 +622,19 @@ fn assemble(
     }
 }
 
+/// How deep a headland the turns between swaths must keep to, metres: the passes' depth for a
+/// machine that reverses (its three-point turns fit a pass or two where the ends are level or
+/// staggered along an oblique edge, U-turns between swaths further apart often do not).
+/// Infinite for a machine that only drives forward: its loops fit few such headlands, and
+/// weighing the turns that do not fit chose other patterns with as many turns over crop (121
+/// of the drill's 135 register parcel plans either way); and for a field without passes.
+fn headland_for_turns(options: &PlanOptions) -> f64 {
+    match options.headland_pass_count() {
+        n if options.reverse && n > 0 => f64::from(n) * options.width,
+        _ => f64::INFINITY,
+    }
+}
+
 /// The route stage's settings for these options: the patterns to choose from, the headland
 /// order, the machine, and the entrance and exit in the field's local metres. The crop is for
 /// the caller to give: a plan gives its inner field (`RouteSettings { crop:
@@ -640,6 +653,8 @@ pub fn route_settings(options: &PlanOptions, field: &Field) -> RouteSettings {
         headland_order: options.headland_order,
         width: options.width,
         turn_radius: options.turn_radius,
+        reverse: options.reverse,
+        headland_m: headland_for_turns(options),
         entrance: options.entrance.map(|p| field.frame.to_local(p)),
         exit: options.exit.map(|p| field.frame.to_local(p)),
         seed: ROUTE_SEED,

@@ -487,6 +487,39 @@ fn longest_over_crop(p: &Plan, from: usize, line: &geo::LineString) -> f64 {
     longest
 }
 
+/// A field whose swaths end along an edge at 27 degrees to them at one end and square at the
+/// other, worked by a 6 m drill that reverses, with two passes and turns of 8 m: between ends
+/// staggered along the oblique edge, U-turns between swaths 18 m apart (the snake that skips
+/// two) reach 44 m beyond the nearer end, where the headland is 26 m deep along the swaths, and
+/// drove over the ends of the swaths between (5 turns over crop). The block is worked swath
+/// after swath with three-point turns made level with the end further out, which keep to the
+/// headland.
+#[test]
+fn a_reversing_machine_turns_along_an_oblique_edge_off_the_crop() {
+    let text = r#"{"type":"Polygon","coordinates":[[[0,0],[400,0],[636,120],[0,120],[0,0]]]}"#;
+    let options = PlanOptions {
+        reverse: true,
+        coordinates: furrow::field::Coordinates::Metric,
+        ..drill()
+    };
+    let p = plan(text, &options, "trapezoid");
+    let segments = &p.path.segments;
+    let mut turns = 0;
+    for (k, s) in segments.iter().enumerate() {
+        if s.kind == SegmentKind::Turn && s.step.is_none() {
+            turns += 1;
+            let over = longest_over_crop(&p, k + 1, &s.line);
+            assert!(over < 1.0, "turn {k} over {over:.1} m of crop");
+        }
+    }
+    assert!(turns >= 15, "{turns} turns");
+    assert!(!p
+        .warnings
+        .iter()
+        .any(|w| w.code == WarningCode::TurnCrossesCrop));
+    check_connections_crossing(&p, "trapezoid");
+}
+
 /// A register parcel whose long edge runs nearly along its swaths, with neighbouring lines in
 /// other blocks: a turn between two swaths of a block whose ends lie hundreds of metres apart
 /// drove back past the ends of the lines between, over some 340 to 400 m of their crop (the

@@ -17,7 +17,7 @@ use crate::error::PlanError;
 use crate::geometry::BooleanOps;
 use crate::geometry::PlanarSimplify;
 use crate::objective::{
-    measure, measure_turns_in, turn_length, Objective, OperationTime, SwathStats,
+    measure, measure_turns_in, turn_length, Objective, OperationTime, SwathStats, TurnLengths,
 };
 use crate::prohibited::constraints_in;
 use crate::route::pattern::block_turning_m;
@@ -67,7 +67,14 @@ fn in_pattern(
     }
     let within: f64 = blocks
         .iter()
-        .map(|ids| block_turning_m(ids, swaths, s.orders, s.machine.turn_radius))
+        .map(|ids| {
+            block_turning_m(
+                ids,
+                swaths,
+                s.orders,
+                TurnLengths::new(s.machine.turn_radius),
+            )
+        })
         .sum();
     stats.turning_distance_m = within + stats.block_change_m;
     stats
@@ -551,7 +558,7 @@ mod tests {
         let stats =
             crate::objective::measure_turns(&swaths, 3.0, block.unsigned_area(), &s.machine);
         let patterned = in_pattern(stats, &swaths, &block_members(&swaths), &with_orders);
-        let expected = block_turning_m(&ids, &swaths, &orders, 6.0);
+        let expected = block_turning_m(&ids, &swaths, &orders, TurnLengths::new(6.0));
         assert!((patterned.turning_distance_m - expected).abs() < 1e-9);
     }
 }

@@ -415,31 +415,52 @@ fn straight(from: Pose, to: Pose) -> Turn {
 
 /// The three-point (fishtail) turn between the ends of neighbouring swaths: from the end of one
 /// (facing out of the field) a quarter circle forward towards the next, straight back, and a
-/// quarter circle forward into it; `None` unless `to` faces the opposite way of `from`, at most
-/// twice the radius to one side of it and level with its end (within a millimetre along).
+/// quarter circle forward into it; `None` unless `to` faces the opposite way of `from` and lies
+/// at most twice the radius to one side of it. Where the ends are staggered along the swaths
+/// (along an oblique headland edge) it is made level with the end further out: straight on
+/// out of `from` first, or straight back along the swath just worked, so that it keeps beyond
+/// the edge and off the crop of the swath it turns into.
+///
+/// ```
+/// use furrow::path::curve::{Gear, Pose};
+/// use furrow::path::turn::Vehicle;
+/// use std::f64::consts::PI;
+///
+/// // Out of a swath heading north at the origin into the next one, 6 m east and starting 12 m
+/// // further north: on 12 m, then the three-point turn.
+/// let drill = Vehicle { turn_radius: 8.0, reverse: true, ..Vehicle::default() };
+/// let (from, to) = (Pose::new(0.0, 0.0, PI / 2.0), Pose::new(6.0, 12.0, -PI / 2.0));
+/// let turn = drill.candidates(from, to).into_iter().find(|t| t.form.name() == "three-point");
+/// let turn = turn.expect("a three-point turn");
+/// assert!((turn.segments[0].length - 12.0).abs() < 1e-9);
+/// assert_eq!(turn.segments.iter().filter(|s| s.gear == Gear::Reverse).count(), 1);
+/// ```
 fn three_point(from: Pose, to: Pose, r: f64) -> Option<Turn> {
     let rel = to.relative_to(&from);
-    if (rel.heading.abs() - std::f64::consts::PI).abs() > 1e-6 || rel.x.abs() > 1e-3 {
+    if (rel.heading.abs() - std::f64::consts::PI).abs() > 1e-6 {
         return None;
     }
     let spacing = rel.y.abs();
     if spacing > 2.0 * r || spacing < 1e-9 {
         return None;
     }
+    // Level with `to`: on along the swath left, forward, or back along it.
+    let gear = if rel.x < 0.0 {
+        Gear::Reverse
+    } else {
+        Gear::Forward
+    };
+    let lead = Segment::line(from, rel.x.abs(), gear);
     let left = rel.y > 0.0;
     let k = if left { 1.0 / r } else { -1.0 / r };
     let quarter = r * FRAC_PI_2;
-    let first = Segment::arc(from, quarter, k, Gear::Forward);
+    let first = Segment::arc(lead.end(), quarter, k, Gear::Forward);
     let back = Segment::line(first.end(), 2.0 * r - spacing, Gear::Reverse);
     let last = Segment::arc(back.end(), quarter, k, Gear::Forward);
-    let mut segments = vec![first];
-    if back.length > 1e-12 {
-        segments.push(back);
-    }
-    segments.push(last);
+    // Pieces of no length are dropped with the other candidates'.
     Some(Turn {
         form: TurnForm::ThreePoint,
-        segments,
+        segments: vec![lead, first, back, last],
         inside: true,
     })
 }
@@ -963,6 +984,30 @@ mod tests {
         assert!(!t.inside && t.form.name() == "loop");
         let t = v.turn(from, to, &tight);
         assert!(t.inside && t.cusps() >= 2, "{:?}", t.form);
+    }
+
+    #[test]
+    fn a_three_point_turn_between_staggered_ends_is_made_level_with_the_end_further_out() {
+        // From a swath heading north into the next one 6 m east, its start 10 m further on or
+        // 10 m back: on out of the swath or back along it, then the three-point turn.
+        let from = Pose::new(0.0, 0.0, FRAC_PI_2);
+        for (y, gear) in [(10.0, Gear::Forward), (-10.0, Gear::Reverse)] {
+            let to = Pose::new(6.0, y, -FRAC_PI_2);
+            let t = three_point(from, to, 8.0).expect("a three-point turn");
+            let lead = t.segments[0];
+            assert!(
+                lead.curvature == 0.0 && lead.gear == gear && (lead.length - 10.0).abs() < 1e-9
+            );
+            let end = curve::end(&t.segments).unwrap();
+            assert!(end.distance(&to) < 1e-9 && end.heading_change(&to).abs() < 1e-9);
+            // It reaches no further than the radius beyond the end further out.
+            let top = t
+                .segments
+                .iter()
+                .flat_map(|s| [s.start.y, s.end().y])
+                .fold(f64::MIN, f64::max);
+            assert!(top <= y.max(0.0) + 8.0 + 1e-9, "{top}");
+        }
     }
 
     #[test]

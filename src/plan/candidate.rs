@@ -640,7 +640,10 @@ fn crop_crossed(path: &Path, options: &PlanOptions, kind: SegmentKind) -> Option
     let cause = if turns && !options.reverse {
         format!(
             " (a loop between neighbouring swaths reaches {} m beyond their ends)",
-            Decimals(loop_depth(options.width, options.turn_radius), 1)
+            Decimals(
+                crate::objective::forward_turn_depth(options.width, options.turn_radius),
+                1
+            )
         )
     } else {
         String::new()
@@ -664,19 +667,6 @@ pub(super) fn turns_over_crop(options: &PlanOptions, worked: &mut Worked) {
     }
     let warning = crop_crossed(&worked.path, options, SegmentKind::Turn);
     worked.warnings.extend(warning);
-}
-
-/// How far beyond the swath ends a forward turn between neighbouring swaths `spacing` apart
-/// reaches, metres: a U of the turning radius where they are two radii apart or more, else a
-/// loop (three arcs of the radius, the middle one away from the swaths).
-fn loop_depth(spacing: f64, radius: f64) -> f64 {
-    if spacing >= 2.0 * radius {
-        return radius;
-    }
-    // The middle arc's centre: two radii from the centres of the end arcs, which lie a
-    // radius beyond each swath's line, away from the other.
-    let half = (spacing + 2.0 * radius) / 2.0;
-    radius + ((2.0 * radius).powi(2) - half * half).max(0.0).sqrt()
 }
 
 /// What the connections' and turns' warnings suggest to a machine that only drives forward.

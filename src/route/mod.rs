@@ -38,12 +38,13 @@ pub use ring::nearest_on_ring;
 use crate::decompose::Blocks;
 use crate::geometry::PlanarHypot;
 use crate::headland::{HeadlandOrder, HeadlandPass, PassAround};
+use crate::objective::TurnLengths;
 use crate::sort::SharedSort;
 use crate::swath::Swaths;
 use geo::{Coord, LineString, MultiPolygon};
 use headland_graph::{HeadlandGraph, CROSSING_PENALTY_M};
 use on_the_way::OnTheWay;
-use pattern::{ways, BlockWay, SwathOrder};
+use pattern::{block_turning_m, ways, BlockWay, SwathOrder};
 use sequence::{SequenceMethod, SequenceProblem, Way};
 use turn_floor::{facing_out, turn_floor};
 
@@ -177,6 +178,13 @@ pub struct RouteSettings {
     pub width: f64,
     /// Turning radius, metres.
     pub turn_radius: f64,
+    /// Whether the machine may reverse: each block's pattern is chosen with close swaths
+    /// joined by three-point turns where they cost less than loops
+    /// ([`TurnLengths::of_machine`]).
+    pub reverse: bool,
+    /// The headland's depth where the swaths end, metres: each block's pattern is chosen with
+    /// turns that do not fit it weighed more ([`TurnLengths::between`]). Infinite: no limit.
+    pub headland_m: f64,
     /// Where the route starts (local metres).
     pub entrance: Option<Coord>,
     /// Where the route ends (local metres).
@@ -195,6 +203,8 @@ impl Default for RouteSettings {
             headland_order: HeadlandOrder::Last,
             width: 6.0,
             turn_radius: 8.0,
+            reverse: false,
+            headland_m: f64::INFINITY,
             entrance: None,
             exit: None,
             seed: 1,
@@ -545,24 +555,32 @@ fn sequence_blocks(
 }
 
 /// Each block's pattern (the cheapest of `settings.orders` by the mean turning of its four
-/// ways; the first on a tie) and its ways in that pattern.
+/// ways, turns that do not fit the headland weighed more; the first on a tie) and its ways in
+/// that pattern, with their turns' lengths by the turn model.
 fn cheapest_ways(
     swaths: &Swaths,
     blocks: &Blocks,
     settings: &RouteSettings,
 ) -> (Vec<String>, Vec<Vec<BlockWay>>) {
+    let turns = TurnLengths::of_machine(settings.turn_radius, settings.reverse);
+    let weighed = turns.within(settings.headland_m);
     let mut names = Vec::with_capacity(blocks.blocks.len());
     let mut block_ways = Vec::with_capacity(blocks.blocks.len());
     for block in &blocks.blocks {
-        let mut best: Option<(f64, String, Vec<BlockWay>)> = None;
+        let mut best: Option<(f64, &SwathOrder)> = None;
         for order in &settings.orders {
-            let w = ways(&block.swaths, &swaths.swaths, order, settings.turn_radius);
-            let mean = w.iter().map(|w| w.turning_m).sum::<f64>() / w.len().max(1) as f64;
-            if best.as_ref().is_none_or(|b| mean < b.0 - 1e-9) {
-                best = Some((mean, order.name(), w));
+            let one = std::slice::from_ref(order);
+            let mean = block_turning_m(&block.swaths, &swaths.swaths, one, weighed);
+            if best.is_none_or(|b| mean < b.0 - 1e-9) {
+                best = Some((mean, order));
             }
         }
-        let (name, w) = best.map_or((String::new(), Vec::new()), |b| (b.1, b.2));
+        let (name, w) = best.map_or((String::new(), Vec::new()), |(_, order)| {
+            (
+                order.name(),
+                ways(&block.swaths, &swaths.swaths, order, turns),
+            )
+        });
         names.push(name);
         block_ways.push(w);
     }

@@ -37,6 +37,7 @@ pub const MAX_SEQUENCE_SEARCH_WORK: usize = 4_000_000;
 /// connections: the ways' turning and the straight distances between them (and from `start`).
 ///
 /// ```
+/// use furrow::objective::TurnLengths;
 /// use furrow::route::nearest::nearest_order;
 /// use furrow::route::pattern::{ways, SwathOrder};
 /// use furrow::swath::generate;
@@ -46,7 +47,7 @@ pub const MAX_SEQUENCE_SEARCH_WORK: usize = 4_000_000;
 /// let strip = |x: f64| polygon![(x: x, y: 0.), (x: x + 5., y: 0.), (x: x + 5., y: 100.), (x: x, y: 100.)];
 /// let swaths = generate(&MultiPolygon::new(vec![strip(0.), strip(20.), strip(10.)]), 0.0, 5.0, 5.0)?;
 /// let block_ways: Vec<_> = (0..swaths.swaths.len())
-///     .map(|i| ways(&[i], &swaths.swaths, &SwathOrder::Boustrophedon, 0.0))
+///     .map(|i| ways(&[i], &swaths.swaths, &SwathOrder::Boustrophedon, TurnLengths::new(0.0)))
 ///     .collect();
 /// let sequence = nearest_order(&block_ways, &swaths.swaths, Some(coord! { x: 0.0, y: -5.0 }));
 /// // West to east: each next strip is entered where the one before was left.
@@ -142,6 +143,7 @@ fn farthest_from_middle(entries: &[IndexedSegment]) -> Option<Coord> {
 mod tests {
     use super::*;
     use crate::decompose::cluster_swaths;
+    use crate::objective::TurnLengths;
     use crate::rng::SplitMix64 as Rng;
     use crate::route::pattern::{ways, SwathOrder};
     use crate::swath::generate;
@@ -164,7 +166,14 @@ mod tests {
         let block_ways = cluster_swaths(&swaths)
             .blocks
             .iter()
-            .map(|b| ways(&b.swaths, &swaths.swaths, &SwathOrder::Boustrophedon, 1.0))
+            .map(|b| {
+                ways(
+                    &b.swaths,
+                    &swaths.swaths,
+                    &SwathOrder::Boustrophedon,
+                    TurnLengths::new(1.0),
+                )
+            })
             .collect();
         (swaths.swaths, block_ways)
     }

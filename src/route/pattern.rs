@@ -248,14 +248,14 @@ pub fn ways(
     ids: &[usize],
     swaths: &[Swath],
     order: &SwathOrder,
-    turn_radius: f64,
+    turns: TurnLengths,
 ) -> Vec<BlockWay> {
     let (mut positions, mut forward, mut mirrored) = (Vec::new(), Vec::new(), Vec::new());
     sequences(ids, order, [&mut positions, &mut forward, &mut mirrored]);
     let mut out = Vec::with_capacity(4);
     for sequence in [forward, mirrored] {
         for first_reversed in [false, true] {
-            let turning_m = turning_of(&sequence, first_reversed, swaths, turn_radius);
+            let turning_m = turning_of(&sequence, first_reversed, swaths, turns);
             out.push(BlockWay {
                 swaths: sequence.clone(),
                 first_reversed,
@@ -271,6 +271,7 @@ pub fn ways(
 /// [`ways`]). `ids` are the block's swaths in line order; no orders give boustrophedon.
 ///
 /// ```
+/// use furrow::objective::TurnLengths;
 /// use furrow::route::pattern::{block_turning_m, SwathOrder};
 /// use furrow::swath::{generate_with, LinePlacement, SwathSettings};
 /// use geo::{polygon, MultiPolygon};
@@ -283,16 +284,17 @@ pub fn ways(
 /// };
 /// let swaths = generate_with(&MultiPolygon::new(vec![block]), &settings)?.swaths;
 /// let ids: Vec<usize> = (0..swaths.len()).collect();
-/// let bous = block_turning_m(&ids, &swaths, &[SwathOrder::Boustrophedon], 6.0);
+/// let turns = TurnLengths::new(6.0);
+/// let bous = block_turning_m(&ids, &swaths, &[SwathOrder::Boustrophedon], turns);
 /// let auto = [SwathOrder::Boustrophedon, SwathOrder::Snake { skip: 3 }];
-/// assert!(block_turning_m(&ids, &swaths, &auto, 6.0) < bous);
+/// assert!(block_turning_m(&ids, &swaths, &auto, turns) < bous);
 /// # Ok::<(), furrow::error::PlanError>(())
 /// ```
 pub fn block_turning_m(
     ids: &[usize],
     swaths: &[Swath],
     orders: &[SwathOrder],
-    turn_radius: f64,
+    turns: TurnLengths,
 ) -> f64 {
     let boustrophedon = [SwathOrder::Boustrophedon];
     let orders = if orders.is_empty() {
@@ -305,7 +307,7 @@ pub fn block_turning_m(
     let mut positions: Vec<usize> = Vec::with_capacity(ids.len());
     let mut forward: Vec<usize> = Vec::with_capacity(ids.len());
     let mut mirrored: Vec<usize> = Vec::with_capacity(ids.len());
-    let mut lengths = TurnLengths::new(turn_radius);
+    let mut lengths = turns;
     let mut least = f64::INFINITY;
     for order in orders {
         sequences(ids, order, [&mut positions, &mut forward, &mut mirrored]);
@@ -344,14 +346,20 @@ fn sequences(
     );
 }
 
-/// The turn model's length of the turns of swaths worked in this sequence, metres.
-pub fn turning_of(sequence: &[usize], first_reversed: bool, swaths: &[Swath], radius: f64) -> f64 {
+/// The turn model's length of the turns of swaths worked in this sequence, metres (`turns`:
+/// the turn lengths of the machine).
+pub fn turning_of(
+    sequence: &[usize],
+    first_reversed: bool,
+    swaths: &[Swath],
+    turns: TurnLengths,
+) -> f64 {
     let mut reversed = first_reversed;
     let mut total = 0.0;
-    let mut lengths = TurnLengths::new(radius);
+    let mut lengths = turns;
     for w in sequence.windows(2) {
         if let (Some(a), Some(b)) = (swaths.get(w[0]), swaths.get(w[1])) {
-            total += lengths.of(a.across - b.across) + stagger(a, reversed, b);
+            total += lengths.between(a.across - b.across, stagger(a, reversed, b));
         }
         reversed = !reversed;
     }
@@ -372,9 +380,9 @@ fn turning_both_ways(sequence: &[usize], swaths: &[Swath], lengths: &mut TurnLen
     let mut totals = [0.0; 2];
     for w in sequence.windows(2) {
         if let (Some(a), Some(b)) = (swaths.get(w[0]), swaths.get(w[1])) {
-            let turn = lengths.of(a.across - b.across);
-            totals[0] += turn + stagger(a, reversed, b);
-            totals[1] += turn + stagger(a, !reversed, b);
+            let spacing = a.across - b.across;
+            totals[0] += lengths.between(spacing, stagger(a, reversed, b));
+            totals[1] += lengths.between(spacing, stagger(a, !reversed, b));
         }
         reversed = !reversed;
     }
@@ -462,12 +470,18 @@ mod tests {
             polygon![(x: 0., y: 0.), (x: 120., y: 0.), (x: 120., y: 200.), (x: 0., y: 200.)];
         let swaths = generate(&MultiPolygon::new(vec![field]), 0.0, 4.0, 4.0).unwrap();
         let ids: Vec<usize> = (0..swaths.swaths.len()).collect();
-        let cost = |o: &SwathOrder| ways(&ids, &swaths.swaths, o, 8.0)[0].turning_m;
+        let cost =
+            |o: &SwathOrder| ways(&ids, &swaths.swaths, o, TurnLengths::new(8.0))[0].turning_m;
         let bous = cost(&SwathOrder::Boustrophedon);
         let snake = cost(&SwathOrder::Snake { skip: 3 });
         assert!(snake < 0.8 * bous, "snake {snake} boustrophedon {bous}");
         // The four ways visit every swath.
-        for w in ways(&ids, &swaths.swaths, &SwathOrder::Snake { skip: 1 }, 8.0) {
+        for w in ways(
+            &ids,
+            &swaths.swaths,
+            &SwathOrder::Snake { skip: 1 },
+            TurnLengths::new(8.0),
+        ) {
             assert!(is_permutation(w.swaths.clone(), ids.len()));
         }
     }
