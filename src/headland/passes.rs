@@ -156,16 +156,22 @@ fn reach_north(segments: &[Segment]) -> f64 {
 /// // A 3 m mower turning at 5 m loops round between neighbours, 12.6 m deep: five passes.
 /// let mower = Vehicle { width: 3.0, turn_radius: 5.0, ..Default::default() };
 /// assert_eq!(passes_for_turns(&mower, 50), 5);
-/// // A 24 m sprayer turning at 9 m makes a U-turn 9 m deep: one pass.
+/// // A 24 m sprayer turning at 9 m makes a U-turn 9 m deep between ends in line; between ends
+/// // staggered along an edge at 21° to its swaths, made level with the end further out, it
+/// // reaches 73 m beyond the nearer one, where one pass is 68 m deep along the swaths: two.
 /// let sprayer = Vehicle { width: 24.0, turn_radius: 9.0, ..Default::default() };
-/// assert_eq!(passes_for_turns(&sprayer, 50), 1);
+/// assert_eq!(passes_for_turns(&sprayer, 50), 2);
 /// ```
 pub fn passes_for_turns(vehicle: &Vehicle, most: u32) -> u32 {
     let width = vehicle.width;
     if !(width.is_finite() && width > 0.0) {
         return 1;
     }
-    let depth = turn_depth(vehicle, width);
+    // Deep enough for the turn between ends staggered along an edge at any angle to the
+    // swaths: made level with the end further out, a turn `d` deep between ends `s` apart
+    // along an edge at angle β reaches s·cot β + d beyond the nearer end, where passes `h`
+    // deep give h / sin β; the most that needs is h = √(s² + d²) (at tan β = d / s).
+    let depth = turn_depth(vehicle, width).hypot(width);
     // A millimetre's grace, so that a depth of exactly whole widths is not one pass more.
     let passes = ((depth - 1e-3) / width).ceil();
     if passes.is_finite() {
@@ -250,9 +256,17 @@ mod tests {
             let v = machine(w, r, false);
             let n = passes_for_turns(&v, 50) as f64;
             let depth = turn_depth(&v, w);
+            // The turn between ends staggered along an edge at β to the swaths, made level
+            // with the end further out, reaches w·cot β + depth beyond the nearer end, where
+            // passes h deep give h / sin β: it fits at every angle, and one pass fewer would
+            // leave it out at some.
+            let needs = |beta: f64| (w / beta.tan() + depth) * beta.sin();
+            let most = (1..900)
+                .map(|i| needs((i as f64 / 10.0).to_radians()))
+                .fold(0.0, f64::max);
             assert!(
-                n * w >= depth - 1e-3 && (n - 1.0) * w < depth,
-                "{w} m, r {r}: {n}"
+                n * w >= most - 1e-3 && (n - 1.0) * w < most,
+                "{w} m, r {r}: {n} passes for {most}"
             );
         }
         // The bounds: at least one pass, at most the limit.
