@@ -196,11 +196,13 @@ pub fn follow_in(
                 push_line(&mut out, &mut position, s - tangent - a_from);
                 let fillet = v.fillet(position, deflection);
                 if !clear_for_work(&fillet, v, area) {
-                    // Worked, the implement would reach out of the field: lifted over it.
+                    // Worked, the implement would reach out of the field: lifted over it (and
+                    // where the machine itself would leave the field or run into an obstacle,
+                    // said so).
                     manoeuvres.push(Manoeuvre {
                         pieces: out.len()..out.len() + fillet.len(),
                         form: TurnForm::Lifted,
-                        inside: true,
+                        inside: area.is_none_or(|a| a.contains(&fillet)),
                     });
                 }
                 for f in fillet {
@@ -720,6 +722,17 @@ mod tests {
         assert_eq!(manoeuvres.len(), 1);
         assert_eq!(manoeuvres[0].form, TurnForm::Lifted);
         assert!(manoeuvres[0].inside);
+        // A pass 1 m from the corner: the rounding takes the machine itself 1.3 m over the
+        // corner's vertex, out of the field, and says so.
+        let pass = [
+            coord! { x: 10.0, y: 49.0 },
+            coord! { x: 51.0, y: 49.0 },
+            coord! { x: 51.0, y: 90.0 },
+        ];
+        let (_, out) = follow_in(&pass, &v, Some(&area));
+        assert_eq!(out.len(), 1);
+        assert_eq!(out[0].form, TurnForm::Lifted);
+        assert!(!out[0].inside);
         // A convex corner is rounded inwards, away from the field's sides: worked.
         let square =
             polygon![(x: 0., y: 0.), (x: 100., y: 0.), (x: 100., y: 100.), (x: 0., y: 100.)];
