@@ -9,6 +9,7 @@
 
 mod auto;
 mod candidate;
+pub mod contour;
 
 use crate::decompose::{Blocks, Decomposition};
 use crate::direction::{
@@ -166,8 +167,10 @@ pub(crate) fn plan_stages(
             plan
         });
     }
-    // Kept for planning again with fewer passes (a copy of the outlines: far less than a plan).
+    // Kept for planning again with fewer passes (a copy of the outlines: far less than a plan),
+    // and by passes to the middle where those may take less time ([`contour`]).
     let again = (options.headland_pass_count() > 0).then(|| (field.clone(), warnings.clone()));
+    let to_middle = contour::weighed(&field, options).then(|| (field.clone(), warnings.clone()));
     let planned = plan_with_passes(field, options, warnings, false);
     let no_inner_field = match &planned {
         // Swaths that only fill what the passes leave are no inner field.
@@ -190,7 +193,12 @@ pub(crate) fn plan_stages(
                 }),
             }
         }
-        _ => planned,
+        _ => match (planned, to_middle) {
+            (Ok(plan), Some((field, warnings))) => {
+                Ok(contour::kept(plan, field, options, warnings))
+            }
+            (planned, _) => planned,
+        },
     }
 }
 

@@ -300,10 +300,17 @@ fn check_path(plan: &Plan, name: &str) {
     assert!(geojson["warnings"].is_array());
 }
 
-/// The inner field is part of the field (the passes are checked in tests/headlands.rs).
-fn check_headland_passes(plan: &Plan, _name: &str) {
+/// The inner field is part of the field (the passes are checked in tests/headlands.rs), and
+/// none is left where the field is worked by passes to its middle.
+fn check_headland_passes(plan: &Plan, name: &str) {
     let inner_area = plan.headlands.inner.unsigned_area();
-    assert!(inner_area > 0.0 && inner_area < plan.field.boundary.unsigned_area());
+    let swaths = plan.summary.swath_count > plan.summary.fill_swath_count;
+    assert!(inner_area < plan.field.boundary.unsigned_area(), "{name}");
+    assert_eq!(
+        inner_area > 0.0,
+        swaths,
+        "{name}: inner field {inner_area} m²"
+    );
 }
 
 #[test]

@@ -245,8 +245,13 @@ fn passes_to_the_middle_work_a_bent_strip_along_its_length() {
             coordinates: furrow::field::Coordinates::Metric,
             ..furrow::PlanOptions::default()
         };
-        let two =
-            plan_geojson(&curved_strip(), &options(2.into())).unwrap_or_else(|e| panic!("{e}"));
+        // Split and merge's swaths asked for (`auto` would work this strip by passes to the
+        // middle itself).
+        let swaths = furrow::PlanOptions {
+            decomposition: furrow::decompose::Decomposition::SplitMerge,
+            ..options(2.into())
+        };
+        let two = plan_geojson(&curved_strip(), &swaths).unwrap_or_else(|e| panic!("{e}"));
         let all = plan_geojson(
             &curved_strip(),
             &options(furrow::headland::passes::HeadlandPasses::All),
@@ -277,6 +282,44 @@ fn passes_to_the_middle_work_a_bent_strip_along_its_length() {
         );
         assert!(worked_outside(&all, 0.5) < 1.0);
     }
+}
+
+#[test]
+fn auto_works_a_narrow_bent_field_by_passes_along_its_length() {
+    // The corpus's 900 m curved strip, 45 m wide, at its suggested settings (6 m, one pass, r
+    // 8): straight swaths are cut short at its bends and leave wedges of crop between the
+    // pieces; passes following its outline to the middle work it along its length.
+    let fields = common::corpus::valid_fields();
+    let strip = fields
+        .iter()
+        .find(|f| f.name == "narrow-curved-strip")
+        .expect("the corpus's curved strip");
+    let plan = plan_geojson(&strip.text(), &strip.options).unwrap_or_else(|e| panic!("{e}"));
+    let step = 0.5;
+    let worked = independent_coverage(&plan, step);
+    let reachable = plan.summary.coverage.reachable_ratio;
+    assert!(
+        worked >= 0.99 * reachable,
+        "{worked:.4} worked of {reachable:.4} reachable"
+    );
+    assert_eq!(plan.summary.swath_count, plan.summary.fill_swath_count);
+    assert!(
+        plan.summary
+            .decomposition
+            .reason
+            .contains("passes following the field's outline"),
+        "{}",
+        plan.summary.decomposition.reason
+    );
+    // Asked for swaths, the same field is worked across in pieces, covering less, slower.
+    let swaths = furrow::PlanOptions {
+        decomposition: furrow::decompose::Decomposition::SplitMerge,
+        ..strip.options.clone()
+    };
+    let across = plan_geojson(&strip.text(), &swaths).unwrap_or_else(|e| panic!("{e}"));
+    assert!(independent_coverage(&across, step) < worked - 0.01);
+    assert!(across.summary.estimated_time_s > plan.summary.estimated_time_s);
+    assert!(worked_outside(&plan, step) < 1.0);
 }
 
 /// A 120 x 80 m block with a bent arm 14 m wide off its north-west corner, in local metres:
