@@ -303,13 +303,9 @@ fn auto_works_a_narrow_bent_field_by_passes_along_its_length() {
         "{worked:.4} worked of {reachable:.4} reachable"
     );
     assert_eq!(plan.summary.swath_count, plan.summary.fill_swath_count);
-    assert!(
-        plan.summary
-            .decomposition
-            .reason
-            .contains("passes following the field's outline"),
-        "{}",
-        plan.summary.decomposition.reason
+    assert_eq!(
+        plan.summary.decomposition.reason,
+        furrow::plan::contour::REASON
     );
     // Asked for swaths, the same field is worked across in pieces, covering less, slower.
     let swaths = furrow::PlanOptions {

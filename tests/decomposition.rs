@@ -166,6 +166,14 @@ fn blocks_partition_the_inner_field_and_keep_forbidden_directions_on_every_field
             assert_eq!(report.requested, d, "{name}");
             if d != Decomposition::Auto {
                 assert_eq!(report.method, d, "{name}");
+            } else if report.reason == furrow::plan::contour::REASON {
+                // Worked by passes to its middle (contour work, plan/contour.rs): swaths only
+                // where the fill works what the passes leave, the one candidate that plan's.
+                assert_eq!(
+                    plan.summary.swath_count, plan.summary.fill_swath_count,
+                    "{name}"
+                );
+                assert_eq!(report.candidates.len(), 1, "{name}");
             } else {
                 // Auto keeps the fastest candidate, and says so.
                 assert_eq!(report.candidates.len(), 3, "{name}");

@@ -24,6 +24,11 @@ pub const CONTOUR_MAX_PASSES: u32 = 12;
 /// weighed (it must leave no more crop standing to be kept, and seldom can).
 const WELL_COVERED: f64 = 0.99;
 
+/// The decomposition report's reason where the passes to the middle are kept (its candidates
+/// are then that plan's own, one).
+pub const REASON: &str =
+    "passes following the field's outline to its middle: less time than swaths, no more crop left";
+
 /// A plan that loses by less than this share of its time keeps the swaths (the simpler plan).
 const TIE: f64 = 1e-3;
 
@@ -95,9 +100,7 @@ pub fn kept(swaths: Plan, field: Field, options: &PlanOptions, warnings: Vec<War
     }
     let report = &mut contour.summary.decomposition;
     report.requested = Decomposition::Auto;
-    report.reason = String::from(
-        "passes following the field's outline to its middle: less time than swaths, no more crop left",
-    );
+    report.reason = String::from(REASON);
     contour.options.headland_passes = options.headland_passes;
     contour
 }
