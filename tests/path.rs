@@ -416,8 +416,8 @@ fn later_swaths(p: &Plan, from: usize) -> impl Iterator<Item = &furrow::swath::S
 }
 
 /// The crop of the swaths the path works from its segment `from` on, by geo's lines: each
-/// swath's centre line and (on strips over 2 m wide) the lines a metre in from its strip's
-/// sides, all a metre in from its ends.
+/// swath's centre line and (on strips over 2 m wide) the outline of its strip a metre in from
+/// its sides, all a metre in from its ends.
 fn later_crop(p: &Plan, from: usize) -> Vec<geo::Line> {
     use geo::Line;
     let side = p.options.width / 2.0 - 1.0;
@@ -430,7 +430,12 @@ fn later_crop(p: &Plan, from: usize) -> Vec<geo::Line> {
             let n = geo::coord! { x: -d.y, y: d.x } * side;
             let mut lines = vec![Line::new(a, b)];
             if side > 0.0 {
-                lines.extend([Line::new(a + n, b + n), Line::new(a - n, b - n)]);
+                lines.extend([
+                    Line::new(a + n, b + n),
+                    Line::new(a - n, b - n),
+                    Line::new(a + n, a - n),
+                    Line::new(b + n, b - n),
+                ]);
             }
             lines
         })

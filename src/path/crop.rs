@@ -3,10 +3,11 @@
 //! the headland, not across crop), where one of the forms of turn the machine can drive keeps
 //! off them.
 //!
-//! Each swath of the route is three lines, tagged with the route step that works it: its
-//! centre line and, on a strip wider than two metres, two lines along the strip a metre in from
-//! its sides, all shortened by a metre at both ends ([`IN_M`]), so that a turn onto a swath's
-//! end, or along the edge of a strip, crosses none. A run of segments driven before step `k`
+//! Each swath of the route is lines tagged with the route step that works it: its centre line
+//! and, on a strip wider than two metres, the outline of the strip taken a metre in from its
+//! sides, all shortened by a metre at both ends ([`IN_M`]), so that a turn onto a swath's end,
+//! or along the edge of a strip, crosses none, and a run that comes into the strip anywhere,
+//! over its side or along it from its end, does. A run of segments driven before step `k`
 //! crosses crop where one of its chords crosses a line tagged `k` or later.
 //!
 //! ```
@@ -15,6 +16,7 @@
 //! use furrow::route::{Route, RouteStep};
 //! use furrow::swath::generate;
 //! use geo::{polygon, MultiPolygon};
+//! use std::f64::consts::PI;
 //!
 //! // Two swaths running north, 6 m apart, worked by steps 0 and 1.
 //! let field = polygon![(x: 0., y: 0.), (x: 12., y: 0.), (x: 12., y: 100.), (x: 0., y: 100.)];
@@ -37,6 +39,10 @@
 //! // slants in over the strip's edge.
 //! let along = [Segment::line(Pose::new(1.0, 20.0, 1.4), 30.0, Gear::Forward)];
 //! assert!(crop.crossed(&along, 0));
+//! // Into the second swath's strip from its end, 1.5 m off its centre line and along it: over
+//! // its crop too, though it crosses neither its centre line nor its sides.
+//! let in_from_the_end = [Segment::line(Pose::new(7.5, 105.0, -PI / 2.0), 20.0, Gear::Forward)];
+//! assert!(crop.crossed(&in_from_the_end, 1));
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
@@ -83,6 +89,10 @@ impl StandingCrop {
                 };
                 lines.push((a + n, b + n, k));
                 lines.push((a - n, b - n, k));
+                // Across both ends: a run that comes in along the strip from its end, between
+                // the lines, runs over its crop too.
+                lines.push((a + n, a - n, k));
+                lines.push((b + n, b - n, k));
             }
         }
         StandingCrop {
