@@ -278,6 +278,28 @@ test("invalid inputs throw a FurrowError with a code", () => {
   assert.throws(() => furrow.plan(readField("rectangle.geojson"), { widht: 3 }), { code: "invalid_option" });
 });
 
+test("the planner's memory stays flat over 1,000 re-plans of a field whose corner is dragged", () => {
+  // As the viewer re-plans while a vertex is dragged: a corner moved a centimetre a plan, out
+  // over 50 places and back, ten times. The wasm memory only grows: once every place has been
+  // planned, a leak that keeps part of each plan (its text, its samples) shows as pages added
+  // over the 900 plans after.
+  const field = readField("square-1ha.geojson");
+  const options = { width: 2.5, headlandPasses: 3, turnRadius: 2.1 };
+  const bytes = readFileSync(new URL("furrow_wasm_bg.wasm", pkgUrl));
+  const memory = () => furrow.initSync({ module: bytes }).memory.buffer.byteLength;
+  const planned = (k) => {
+    const step = k % 100 < 50 ? k % 100 : 100 - (k % 100);
+    const moved = structuredClone(field);
+    const ring = moved.features[0].geometry.coordinates[0];
+    ring[2] = [ring[2][0] + step * 1.8e-7, ring[2][1] + step * 0.9e-7];
+    return furrow.plan(moved, options).summary.swath_count;
+  };
+  for (let k = 0; k < 100; k++) assert.ok(planned(k) > 0);
+  const warm = memory();
+  for (let k = 100; k < 1000; k++) assert.ok(planned(k) > 0);
+  assert.equal(memory(), warm, `wasm memory ${warm} -> ${memory()} bytes over 900 plans`);
+});
+
 test("the instance keeps planning after errors", () => {
   for (let i = 0; i < 50; i++) {
     assert.throws(() => furrow.plan("{"), { code: "invalid_json" });
