@@ -60,7 +60,7 @@ node -e '
   fs.writeFileSync(file, dts);
 '
 cp js/furrow.js js/furrow.d.ts js/tracks.js js/tracks.d.ts js/formats.js js/formats.d.ts js/load.js LICENSE-MIT LICENSE-APACHE pkg/
-# Debian's wasm-opt (binaryen 108) produces a module that fails to load: never run it instead.
+# Debian's wasm-opt (binaryen 108) produces a module that fails to load: only npm's (above) is used.
 
 version=$(awk -F'"' '/^version = / { print $2; exit }' Cargo.toml)
 # The repository's address, from Cargo.toml's `repository` when it has one.
