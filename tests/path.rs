@@ -361,8 +361,8 @@ fn connections_that_leave_the_field_are_flagged_and_warned_of() {
     assert!(flagged > 0, "no connection of the drill leaves the field");
 }
 
-/// Every connection between worked stretches, and every turn between swaths that keeps in the
-/// field, that crosses crop of a swath the path works after it is flagged (`crosses_crop`) and
+/// Every connection between worked stretches, and every turn between swaths (in the field or
+/// out of it), that crosses crop of a swath the path works after it is flagged (`crosses_crop`) and
 /// warned of with its cause; a flagged one does cross some. The crop: [`later_crop`]. Returns
 /// how many connections and turns are flagged.
 fn check_connections_crossing(p: &Plan, what: &str) -> (usize, usize) {
@@ -375,10 +375,7 @@ fn check_connections_crossing(p: &Plan, what: &str) -> (usize, usize) {
             .iter()
             .find(|s| s.step.is_some())
             .is_some_and(|s| s.kind == SegmentKind::Swath);
-        let turn_between = c.kind == SegmentKind::Turn
-            && c.step.is_none()
-            && c.turn.as_ref().is_some_and(|t| t.inside)
-            && next_swath;
+        let turn_between = c.kind == SegmentKind::Turn && c.step.is_none() && next_swath;
         let connection = c.kind == SegmentKind::Connection && k > 0 && k < between;
         if !connection && !turn_between {
             assert!(!c.crosses_crop, "{what}: segment {k} is flagged");

@@ -430,10 +430,11 @@ pub fn build_path(
 }
 
 /// Flags (`crosses_crop`) each turn between swaths of `path` that crosses crop `route` works
-/// later and stays in the field (`build_path` flags those of a machine that reverses as it
-/// makes them, and forward only those between ends far staggered): done once for the plan
-/// chosen rather than for every candidate.
-pub fn flag_turns_over_crop(path: &mut Path, route: &Route, swaths: &Swaths) {
+/// later, in the field or out of it: done once for the plan chosen rather than for every
+/// candidate. Where `made_minding` (a machine that reverses), `build_path` has flagged the turns
+/// that stay in the field as it made them, and only those that leave it are checked here (of a
+/// forward machine's, `build_path` flags only those between ends far staggered).
+pub fn flag_turns_over_crop(path: &mut Path, route: &Route, swaths: &Swaths, made_minding: bool) {
     let mut standing: Option<StandingCrop> = None;
     // The route step of the next worked segment, walking back from the end.
     let mut next_step: Option<usize> = None;
@@ -444,7 +445,7 @@ pub fn flag_turns_over_crop(path: &mut Path, route: &Route, swaths: &Swaths) {
         }
         let inside = seg.turn.as_ref().is_some_and(|t| t.inside);
         let between = seg.kind == SegmentKind::Turn
-            && inside
+            && !(made_minding && inside)
             && matches!(
                 next_step.and_then(|k| route.steps.get(k)),
                 Some(RouteStep::Swath { .. })

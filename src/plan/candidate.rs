@@ -660,11 +660,14 @@ fn crop_crossed(path: &Path, options: &PlanOptions, kind: SegmentKind) -> Option
 }
 
 /// Flags the turns between swaths of the plan chosen that drive over crop it works later (a
-/// machine that reverses has them flagged as they are made) and warns of them.
+/// machine that reverses has those in the field flagged as they are made) and warns of them.
 pub(super) fn turns_over_crop(options: &PlanOptions, worked: &mut Worked) {
-    if !options.reverse {
-        crate::path::flag_turns_over_crop(&mut worked.path, &worked.route, &worked.swaths);
-    }
+    crate::path::flag_turns_over_crop(
+        &mut worked.path,
+        &worked.route,
+        &worked.swaths,
+        options.reverse,
+    );
     let warning = crop_crossed(&worked.path, options, SegmentKind::Turn);
     worked.warnings.extend(warning);
 }
