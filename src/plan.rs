@@ -168,9 +168,9 @@ pub(crate) fn plan_stages(
         });
     }
     // Kept for planning again with fewer passes (a copy of the outlines: far less than a plan),
-    // and by passes to the middle where those may take less time ([`contour`]).
+    // or by passes to the middle where those may take less time ([`contour`], only with passes).
     let again = (options.headland_pass_count() > 0).then(|| (field.clone(), warnings.clone()));
-    let to_middle = contour::weighed(&field, options).then(|| (field.clone(), warnings.clone()));
+    let to_middle = contour::weighed(&field, options);
     let planned = plan_with_passes(field, options, warnings, false);
     let no_inner_field = match &planned {
         // Swaths that only fill what the passes leave are no inner field.
@@ -193,12 +193,10 @@ pub(crate) fn plan_stages(
                 }),
             }
         }
-        _ => match (planned, to_middle) {
-            (Ok(plan), Some((field, warnings))) => {
-                Ok(contour::kept(plan, field, options, warnings))
-            }
-            (planned, _) => planned,
-        },
+        Some((field, warnings)) if to_middle => {
+            planned.map(|plan| contour::kept(plan, field, options, warnings))
+        }
+        _ => planned,
     }
 }
 
