@@ -156,11 +156,7 @@ fn the_coverage_figure_agrees_with_an_independent_count_on_the_corpus() {
 
 #[test]
 fn every_part_left_standing_is_a_feature_and_lies_in_the_field() {
-    let fields = common::corpus::valid_fields();
-    let field = fields
-        .iter()
-        .find(|f| f.name == "narrow-curved-strip")
-        .expect("corpus field");
+    let field = common::corpus::valid_field("narrow-curved-strip");
     let plan = plan_geojson(&field.text(), &field.options).unwrap();
     let c = &plan.summary.coverage;
     assert!(!c.uncovered.is_empty());
@@ -289,11 +285,7 @@ fn auto_works_a_narrow_bent_field_by_passes_along_its_length() {
     // The corpus's 900 m curved strip, 45 m wide, at its suggested settings (6 m, one pass, r
     // 8): straight swaths are cut short at its bends and leave wedges of crop between the
     // pieces; passes following its outline to the middle work it along its length.
-    let fields = common::corpus::valid_fields();
-    let strip = fields
-        .iter()
-        .find(|f| f.name == "narrow-curved-strip")
-        .expect("the corpus's curved strip");
+    let strip = common::corpus::valid_field("narrow-curved-strip");
     let plan = plan_geojson(&strip.text(), &strip.options).unwrap_or_else(|e| panic!("{e}"));
     let step = 0.5;
     let worked = independent_coverage(&plan, step);

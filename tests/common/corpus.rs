@@ -59,6 +59,14 @@ pub fn valid_fields() -> Vec<CorpusField> {
     out
 }
 
+/// The valid field `name` (file name without `.geojson`), with its suggested settings.
+pub fn valid_field(name: &str) -> CorpusField {
+    valid_fields()
+        .into_iter()
+        .find(|f| f.name == name)
+        .unwrap_or_else(|| panic!("no corpus field {name}"))
+}
+
 /// The invalid inputs and the error code each must give.
 pub fn invalid_fields() -> Vec<(PathBuf, &'static str)> {
     let expected = [
