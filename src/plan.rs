@@ -10,6 +10,7 @@
 mod auto;
 mod candidate;
 pub mod contour;
+pub mod share;
 
 use crate::decompose::{Blocks, Decomposition};
 use crate::direction::{
@@ -22,7 +23,6 @@ use crate::field::Field;
 use crate::geometry::PlanarHypot;
 use crate::headland::complexity::check_offsets;
 use crate::headland::edges::{passes_per_edge, EdgeRule};
-use crate::headland::passes::HeadlandPasses;
 use crate::headland::{build, EdgePasses, HeadlandSettings, Headlands};
 use crate::metrics::{DecompositionReport, StageTimes, Summary};
 use crate::numbers::{Decimals, Shortest};
@@ -154,50 +154,14 @@ pub(crate) fn plan_stages(
     options: &PlanOptions,
     warnings: Vec<Warning>,
 ) -> Result<Plan, PlanError> {
-    options.validate()?;
-    // `auto` passes are counted once, from the machine, and `all` from the field's size: the
-    // plan reports the count laid.
-    let counted = options.with_pass_count(&field.boundary);
-    let asked = options;
-    let options = counted.as_ref().unwrap_or(options);
-    // Passes to the middle leave no inner field by design: the plan says `all`.
-    if asked.headland_passes == HeadlandPasses::All {
-        return plan_with_passes(field, options, warnings, true).map(|mut plan| {
-            plan.options.headland_passes = HeadlandPasses::All;
-            plan
-        });
-    }
-    // Kept for planning again with fewer passes (a copy of the outlines: far less than a plan),
-    // or by passes to the middle where those may take less time ([`contour`], only with passes).
-    let again = (options.headland_pass_count() > 0).then(|| (field.clone(), warnings.clone()));
-    let to_middle = contour::weighed(&field, options);
-    let planned = plan_with_passes(field, options, warnings, false);
-    let no_inner_field = match &planned {
-        // Swaths that only fill what the passes leave are no inner field.
-        Ok(plan) => plan.summary.swath_count == plan.summary.fill_swath_count,
-        Err(e) => e.code == ErrorCode::HeadlandConsumesField,
-    };
-    match again {
-        Some((field, warnings)) if no_inner_field => {
-            let fewer = fewer_passes(&field, options, &warnings);
-            match (planned, fewer) {
-                (Ok(plan), Some(fewer)) if covers_more(&fewer, &plan) => Ok(fewer),
-                (Ok(plan), _) => Ok(plan),
-                (Err(_), Some(fewer)) => Ok(fewer),
-                (Err(e), None) => Err(PlanError {
-                    message: format!(
-                        "the field has no room for a pass of {} m, with or without headland passes: it is narrower than the working width nearly everywhere; use a narrower width",
-                        Shortest(options.width)
-                    ),
-                    ..e
-                }),
-            }
-        }
-        Some((field, warnings)) if to_middle => {
-            planned.map(|plan| contour::kept(plan, field, options, warnings))
-        }
-        _ => planned,
-    }
+    let pending = share::Pending::start(field, options, warnings, share::Share::WHOLE)?;
+    let summaries = pending.summaries();
+    pending.finish(&summaries).unwrap_or_else(|| {
+        Err(PlanError::new(
+            ErrorCode::Internal,
+            "the plan's one share did not finish it",
+        ))
+    })
 }
 
 /// Whether plan `a` works more of the field than `b`, less what it works outside the field.
@@ -270,32 +234,46 @@ fn fewer_passes(field: &Field, options: &PlanOptions, warnings: &[Warning]) -> O
 }
 
 /// The stages, in order, with the headland passes `options` asks for (to the field's middle,
-/// `to_middle`, where `headlandPasses` is `all`).
-///
-/// The field is cleaned and checked ([`clean_field`]), its direction chosen
-/// ([`direction_mode`], [`choose_direction`]), its headlands laid ([`lay_headlands`]); then
-/// each decomposition tried is worked into a candidate plan (`auto::work_candidates`), the
-/// fastest chosen (`auto::choose`) and its coverage measured.
+/// `to_middle`, where `headlandPasses` is `all`): the stages before the decomposition
+/// ([`stage`]), each decomposition tried worked into a candidate plan (`auto::work_units`),
+/// the fastest chosen (`auto::decide`), and it filled and measured ([`finish`]).
 fn plan_with_passes(
+    field: Field,
+    options: &PlanOptions,
+    warnings: Vec<Warning>,
+    to_middle: bool,
+) -> Result<Plan, PlanError> {
+    let mut prepared = stage(field, options, warnings, to_middle)?;
+    let mut outcomes = auto::work_units(&mut prepared, share::Share::WHOLE);
+    let summaries: Vec<share::UnitSummary> = outcomes.iter().map(|o| o.summary.clone()).collect();
+    let decision = auto::decide(&summaries, &prepared.methods)?;
+    finish(prepared, decision, &mut outcomes)
+}
+
+/// The stages before the decomposition: the field cleaned and checked ([`clean_field`]), its
+/// direction chosen ([`direction_mode`], [`choose_direction`]), its headlands laid
+/// ([`lay_headlands`]), the decompositions to try and what they share.
+fn stage(
     mut field: Field,
     options: &PlanOptions,
     mut warnings: Vec<Warning>,
     to_middle: bool,
-) -> Result<Plan, PlanError> {
+) -> Result<Prepared, PlanError> {
     let mut times = StageTimes::default();
     let mut clock = Instant::now();
     options.check_places(&field)?;
-    let with_field = options.with_field(&field);
-    let options = with_field.as_ref().unwrap_or(options);
-    warnings.extend(clean_field(&mut field, options)?);
+    let options = options
+        .with_field(&field)
+        .unwrap_or_else(|| options.clone());
+    warnings.extend(clean_field(&mut field, &options)?);
     times.lap(&mut clock, |t| &mut t.validation);
     let objective = options.objective.objective();
-    let search = area_search(options, objective.as_ref());
-    let mode = direction_mode(&field, options, &mut warnings)?;
-    let direction = choose_direction(&field, options, mode, &search)?;
+    let search = area_search(&options, objective.as_ref());
+    let mode = direction_mode(&field, &options, &mut warnings)?;
+    let direction = choose_direction(&field, &options, mode, &search)?;
     times.lap(&mut clock, |t| &mut t.direction);
     let (obstacles, headlands, all_around) =
-        lay_headlands(&field, options, direction.bearing, to_middle)?;
+        lay_headlands(&field, &options, direction.bearing, to_middle)?;
     let methods = auto::decompositions(options.decomposition, mode, all_around)?;
     times.lap(&mut clock, |t| &mut t.headlands);
     // The swaths at the field's direction, shared by the single-direction decompositions.
@@ -305,7 +283,7 @@ fn plan_with_passes(
         .then(|| {
             single_direction(
                 &field,
-                options,
+                &options,
                 &headlands,
                 direction.bearing,
                 direction.placement,
@@ -317,33 +295,50 @@ fn plan_with_passes(
     // The ways along the headland, for every candidate that adds no passes of its own.
     let graph = HeadlandGraph::new(&headlands.passes, options.width).with_crop(&headlands.inner);
     times.lap(&mut clock, |t| &mut t.route);
-    let prepared = Prepared {
-        field: &field,
+    let area = driving_area(&field);
+    times.lap(&mut clock, |t| &mut t.path);
+    let mut prepared = Prepared {
+        field,
         options,
-        obstacles: &obstacles,
-        objective: objective.as_ref(),
+        obstacles,
+        objective,
         direction,
         headlands,
         graph,
         single,
-        area: driving_area(&field),
+        area,
+        warnings,
+        methods: Vec::new(),
+        left_out: None,
+        times,
     };
-    times.lap(&mut clock, |t| &mut t.path);
     let (methods, left_out) = auto::within_limits(methods, &prepared)?;
-    let candidates = auto::work_candidates(&prepared, &methods, &mut times)?;
+    prepared.methods = methods;
+    prepared.left_out = left_out;
+    Ok(prepared)
+}
+
+/// The plan of the candidate `decision` chooses among `outcomes` (which must hold it): its
+/// leftovers filled, its coverage measured.
+fn finish(
+    mut prepared: Prepared,
+    decision: auto::Decision,
+    outcomes: &mut [auto::Outcome],
+) -> Result<Plan, PlanError> {
+    let mut times = prepared.times;
     let mut clock = Instant::now();
-    let (chosen, decomposition) =
-        auto::choose(candidates, options.decomposition, &methods, left_out);
+    let (chosen, decomposition) = auto::choose(&prepared, decision, outcomes)?;
     times.lap(&mut clock, |t| &mut t.metrics);
     let (mut chosen, coverage) = candidate::fill_leftovers(&prepared, chosen, &mut times)?;
     let mut clock = Instant::now();
-    candidate::turns_over_crop(options, &mut chosen);
+    candidate::turns_over_crop(&prepared.options, &mut chosen);
     times.lap(&mut clock, |t| &mut t.path);
-    let mut plan = assemble(field, options, obstacles, chosen, decomposition, warnings);
+    let warnings = std::mem::take(&mut prepared.warnings);
+    let sample_spacing = prepared.options.sample_spacing;
+    let mut plan = assemble(prepared, chosen, decomposition, warnings);
     plan.summary.coverage = coverage;
     plan.summary.stages_ms = times;
-    plan.warnings
-        .extend(coarsened(&plan.path, options.sample_spacing));
+    plan.warnings.extend(coarsened(&plan.path, sample_spacing));
     Ok(plan)
 }
 
@@ -573,11 +568,12 @@ fn driving_area(field: &Field) -> DrivingArea {
 
 /// What every decomposition tried is worked from: the field and the options, and what the
 /// stages before the decomposition found.
-struct Prepared<'a> {
-    field: &'a Field,
-    options: &'a PlanOptions,
-    obstacles: &'a ObstacleClasses,
-    objective: &'a dyn Objective,
+struct Prepared {
+    field: Field,
+    /// The options with what the field gives (its entrance, its reference line).
+    options: PlanOptions,
+    obstacles: ObstacleClasses,
+    objective: Box<dyn Objective>,
     direction: Direction,
     headlands: Headlands,
     /// The headland graph of the passes in `headlands`.
@@ -586,18 +582,30 @@ struct Prepared<'a> {
     single: Option<SingleDirection>,
     /// Where turns must stay (the field less its obstacles): the same for every candidate.
     area: DrivingArea,
+    /// What was repaired in the input and what the stages so far found.
+    warnings: Vec<Warning>,
+    /// The decompositions to try, within their limits.
+    methods: Vec<Decomposition>,
+    /// Why split and merge was not tried, where it was left out.
+    left_out: Option<String>,
+    /// The stages' times so far.
+    times: StageTimes,
 }
 
 /// The plan of the chosen candidate: its summary with the decomposition report and the pattern
 /// asked for, its warnings after those of the stages before it.
 fn assemble(
-    field: Field,
-    options: &PlanOptions,
-    obstacles: ObstacleClasses,
+    prepared: Prepared,
     chosen: Worked,
     decomposition: DecompositionReport,
     mut warnings: Vec<Warning>,
 ) -> Plan {
+    let Prepared {
+        field,
+        options,
+        obstacles,
+        ..
+    } = prepared;
     let Worked {
         headlands,
         swaths,
@@ -616,7 +624,7 @@ fn assemble(
     warnings.extend(own_warnings);
     Plan {
         field,
-        options: options.clone(),
+        options,
         obstacles,
         headlands,
         swaths,

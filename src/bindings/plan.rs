@@ -12,6 +12,8 @@ use crate::field::{geojson, validate};
 use crate::options::{PlanOptions, DEFAULT_OPTIONS_JSON};
 use crate::output::json::to_json_string;
 use crate::plan::plan_stages;
+use crate::plan::share::{decode, encode, Pending, Share};
+use std::cell::RefCell;
 use wasm_bindgen::prelude::*;
 use web_time::Instant;
 
@@ -25,28 +27,91 @@ const TYPESCRIPT: &'static str = include_str!("plan.d.ts");
 pub fn plan_js(field: JsValue, options: JsValue) -> Result<JsValue, JsValue> {
     let started = Instant::now();
     let options = read_options(options).map_err(|e| to_js_error(&e))?;
-    // An object is read as its JSON text: one string across the boundary rather than a call
-    // per property, and one reader for both forms. NaN and Infinity become null there, which
-    // the reader takes for a coordinate that is not a finite number.
+    let (field, warnings) = read_field(field, &options).map_err(|e| to_js_error(&e))?;
+    let read_ms = started.elapsed().as_secs_f64() * 1000.0;
+    let plan = plan_stages(field, &options, warnings).map_err(|e| to_js_error(&e))?;
+    plan_result(plan, started, read_ms)
+}
+
+thread_local! {
+    /// The plan begun by [`plan_share`], with when its reading began and how long it took.
+    static PENDING: RefCell<Option<(Pending, Instant, f64)>> = const { RefCell::new(None) };
+}
+
+/// Begins share `index` of `of` of a plan (the package's worker pool, `furrow/pool`): reads
+/// and checks the field, lays its headlands and works this share's candidates. Returns their
+/// summaries as numbers, for every share's [`finish_share`]. A plan begun before and not
+/// finished is dropped.
+#[wasm_bindgen(js_name = planShare, skip_typescript)]
+pub fn plan_share(
+    field: JsValue,
+    options: JsValue,
+    index: u32,
+    of: u32,
+) -> Result<js_sys::Float64Array, JsValue> {
+    PENDING.with(|p| p.borrow_mut().take());
+    let started = Instant::now();
+    let options = read_options(options).map_err(|e| to_js_error(&e))?;
+    let (field, warnings) = read_field(field, &options).map_err(|e| to_js_error(&e))?;
+    let read_ms = started.elapsed().as_secs_f64() * 1000.0;
+    let share = Share {
+        index: index as usize,
+        of: of as usize,
+    };
+    let pending = Pending::start(field, &options, warnings, share).map_err(|e| to_js_error(&e))?;
+    let numbers = encode(&pending.summaries());
+    PENDING.with(|p| *p.borrow_mut() = Some((pending, started, read_ms)));
+    Ok(js_sys::Float64Array::from(&numbers[..]))
+}
+
+/// Finishes the plan [`plan_share`] began, given every share's summaries (one after another):
+/// the plan, as [`plan_js`] gives it, where this share holds the candidate chosen; else `null`.
+#[wasm_bindgen(js_name = finishShare, skip_typescript)]
+pub fn finish_share(summaries: &[f64]) -> Result<JsValue, JsValue> {
+    let internal = |m: &str| to_js_error(&PlanError::new(ErrorCode::Internal, m));
+    let (pending, started, read_ms) = PENDING
+        .with(|p| p.borrow_mut().take())
+        .ok_or_else(|| internal("no plan was begun in this share"))?;
+    let summaries =
+        decode(summaries).ok_or_else(|| internal("the shares' summaries are unreadable"))?;
+    match pending.finish(&summaries) {
+        None => Ok(JsValue::NULL),
+        Some(plan) => plan_result(plan.map_err(|e| to_js_error(&e))?, started, read_ms),
+    }
+}
+
+/// Reads a field given as GeoJSON text or as an object. An object is read as its JSON text:
+/// one string across the boundary rather than a call per property, and one reader for both
+/// forms. NaN and Infinity become null there, which the reader takes for a coordinate that is
+/// not a finite number.
+fn read_field(
+    field: JsValue,
+    options: &PlanOptions,
+) -> Result<(crate::field::Field, Vec<crate::error::Warning>), PlanError> {
     let (text, object) = match field.as_string() {
         Some(text) => (text, false),
         None => (
             json_text(&field).map_err(|_| {
-                to_js_error(&PlanError::new(
+                PlanError::new(
                     ErrorCode::InvalidGeojson,
                     "the field must be GeoJSON: its text, or an object of plain values",
-                ))
+                )
             })?,
             true,
         ),
     };
-    let input = geojson::parse_str(&text)
-        .map_err(|e| if object { without_text_place(e) } else { e })
-        .map_err(|e| to_js_error(&e))?;
-    let (field, warnings) =
-        validate::field_from_input(input, options.coordinates).map_err(|e| to_js_error(&e))?;
-    let read_ms = started.elapsed().as_secs_f64() * 1000.0;
-    let mut plan = plan_stages(field, &options, warnings).map_err(|e| to_js_error(&e))?;
+    let input =
+        geojson::parse_str(&text).map_err(|e| if object { without_text_place(e) } else { e })?;
+    validate::field_from_input(input, options.coordinates)
+}
+
+/// The plan as JavaScript: its GeoJSON with `summary` and `warnings`, and the sampled path's
+/// columns as typed arrays. `read_ms` (reading the input) counts to the validation stage.
+fn plan_result(
+    mut plan: crate::plan::Plan,
+    started: Instant,
+    read_ms: f64,
+) -> Result<JsValue, JsValue> {
     plan.summary.planning_ms = started.elapsed().as_secs_f64() * 1000.0;
     plan.summary.stages_ms.validation += read_ms;
     // One string and the engine's JSON.parse are much cheaper than building the object

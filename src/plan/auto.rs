@@ -4,6 +4,7 @@
 //! ([`work`]) and the fastest kept, near-ties going to the simpler.
 
 use super::candidate::{work, Worked};
+use super::share::{Scored, Share, UnitSummary};
 use super::{route_settings, Prepared, DECOMPOSITION_TOLERANCE};
 use crate::decompose::boustrophedon::within_limits as boustrophedon_within_limits;
 use crate::decompose::cells::MergeRule;
@@ -17,6 +18,7 @@ use crate::error::{ErrorCode, PlanError};
 use crate::geometry::PlanarHypot;
 use crate::metrics::{DecompositionCandidate, DecompositionReport, StageTimes};
 use crate::numbers::Shortest;
+use crate::route::pattern::SwathOrder;
 use geo::{Area, Centroid};
 use web_time::Instant;
 
@@ -120,25 +122,227 @@ pub(super) fn within_limits(
     Ok((methods, (!left_out.is_empty()).then(|| left_out.join("; "))))
 }
 
-/// Works each decomposition of `methods` into a candidate plan, in their order.
-pub(super) fn work_candidates(
-    prep: &Prepared,
-    methods: &[Decomposition],
-    times: &mut StageTimes,
-) -> Result<Vec<Worked>, PlanError> {
-    let mut candidates: Vec<Worked> = Vec::with_capacity(methods.len());
-    for &m in methods {
-        if m == Decomposition::SplitMerge {
-            if let Some(best) = best_split_merge(prep, times)? {
-                candidates.push(best);
-            }
-        } else {
-            // Boustrophedon cells often cluster the swaths into the blocks of `none`, in the
-            // same order, only numbered cell by cell: its route and path are then those of
-            // `none`.
-            let same_as = candidates.iter().find(|c| c.method == Decomposition::None);
-            candidates.push(work(prep, m, None, same_as, times)?);
+/// A part of auto's work that plans apart from the others (in a worker of its own, see
+/// [`super::share`]): the single-direction decompositions together (boustrophedon takes the
+/// route of `none` where their blocks agree), or split and merge from one seed.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Unit {
+    Single,
+    Seed(Seed),
+}
+
+/// The units of `methods`, in the order their candidates are compared: the single-direction
+/// decompositions first, then split and merge's seeds.
+fn units(methods: &[Decomposition]) -> Vec<Unit> {
+    let mut units = Vec::new();
+    if methods.iter().any(|&m| m != Decomposition::SplitMerge) {
+        units.push(Unit::Single);
+    }
+    if methods.contains(&Decomposition::SplitMerge) {
+        units.extend(SPLIT_MERGE_SEEDS.map(Unit::Seed));
+    }
+    units
+}
+
+/// What one unit gave: its summary (what the choice needs, the same in every share) and the
+/// plans of its candidates, or the error that stopped it.
+pub(super) struct Outcome {
+    pub(super) summary: UnitSummary,
+    worked: Vec<Worked>,
+    error: Option<PlanError>,
+}
+
+/// Works the units of `share`, in order, into candidate plans. Working alone, a seed whose
+/// cells or blocks an earlier seed had is skipped (it would plan the same again); a share
+/// works each of its seeds, and [`decide`] skips them alike. The first unit that fails ends
+/// the work (no unit after it can matter).
+pub(super) fn work_units(prep: &mut Prepared, share: Share) -> Vec<Outcome> {
+    let mut times = prep.times;
+    let prep_ = &*prep;
+    let mut outcomes = Vec::new();
+    let mut seen = share.whole().then(Seen::default);
+    for (u, unit) in units(&prep_.methods).into_iter().enumerate() {
+        if !share.has(u) {
+            continue;
         }
+        let outcome = match unit {
+            Unit::Single => work_single(prep_, &mut times).map(|worked| Outcome {
+                summary: UnitSummary {
+                    candidates: worked.iter().map(Worked::scored).collect(),
+                    ..UnitSummary::new(u)
+                },
+                worked,
+                error: None,
+            }),
+            Unit::Seed(seed) => work_seed(prep_, u, seed, seen.as_mut(), &mut times),
+        };
+        match outcome {
+            Ok(o) => outcomes.push(o),
+            Err(e) => {
+                outcomes.push(Outcome {
+                    summary: UnitSummary {
+                        failed: true,
+                        ..UnitSummary::new(u)
+                    },
+                    worked: Vec::new(),
+                    error: Some(e),
+                });
+                break;
+            }
+        }
+    }
+    prep.times = times;
+    outcomes
+}
+
+/// The single-direction decompositions of `prep.methods`, each worked into a candidate.
+fn work_single(prep: &Prepared, times: &mut StageTimes) -> Result<Vec<Worked>, PlanError> {
+    let mut worked: Vec<Worked> = Vec::new();
+    for &m in prep
+        .methods
+        .iter()
+        .filter(|&&m| m != Decomposition::SplitMerge)
+    {
+        // Boustrophedon cells often cluster the swaths into the blocks of `none`, in the
+        // same order, only numbered cell by cell: its route and path are then those of
+        // `none`.
+        let same_as = worked.iter().find(|c| c.method == Decomposition::None);
+        let w = work(prep, m, None, same_as, times)?;
+        worked.push(w);
+    }
+    Ok(worked)
+}
+
+/// The cells and blocks of the seeds worked so far, where a seed that repeats one is skipped.
+#[derive(Default)]
+struct Seen {
+    starts: Vec<Vec<BlockSignature>>,
+    results: Vec<Vec<BlockSignature>>,
+}
+
+/// Split and merge from `seed` (unit `u`), worked into a candidate; skipped where its cells or
+/// its blocks are in `seen` (working alone).
+fn work_seed(
+    prep: &Prepared,
+    u: usize,
+    seed: Seed,
+    mut seen: Option<&mut Seen>,
+    times: &mut StageTimes,
+) -> Result<Outcome, PlanError> {
+    let mut clock = Instant::now();
+    let orders = route_settings(&prep.options, &prep.field).orders;
+    let settings = split_merge_settings(prep, &orders);
+    let start = seed_cells(prep, seed, &settings);
+    let start_signatures = start.as_ref().map(|(blocks, _)| signatures(blocks));
+    let mut summary = UnitSummary {
+        start: start_signatures.clone(),
+        ..UnitSummary::new(u)
+    };
+    let skipped = |summary: UnitSummary| Outcome {
+        summary,
+        worked: Vec::new(),
+        error: None,
+    };
+    if let (Some(seen), Some(s)) = (seen.as_deref_mut(), start_signatures) {
+        if seen.starts.iter().any(|t| same_blocks(t, &s)) {
+            times.lap(&mut clock, |t| &mut t.decomposition);
+            return Ok(skipped(summary));
+        }
+        seen.starts.push(s);
+    }
+    let sm = improve_seed(prep, seed, start, &settings)?;
+    times.lap(&mut clock, |t| &mut t.decomposition);
+    let result = signatures(&sm.blocks);
+    summary.evaluations = sm.evaluations;
+    summary.result = Some(result.clone());
+    if let Some(seen) = seen {
+        if seen.results.iter().any(|r| same_blocks(r, &result)) {
+            return Ok(skipped(summary));
+        }
+        seen.results.push(result);
+    }
+    let w = work(prep, Decomposition::SplitMerge, Some(sm), None, times)?;
+    summary.candidates = vec![w.scored()];
+    Ok(Outcome {
+        summary,
+        worked: vec![w],
+        error: None,
+    })
+}
+
+/// What [`decide`] found: the unit whose failure ends the plan, or the candidates compared (each
+/// its unit and its place there), their figures and the one of lowest compared time.
+pub(super) enum Decision {
+    Failed(usize),
+    Chosen {
+        candidates: Vec<(usize, usize)>,
+        figures: Vec<DecompositionCandidate>,
+        best: usize,
+        /// Split and merge's evaluations over its seeds.
+        seed_evaluations: usize,
+    },
+}
+
+impl Decision {
+    /// The unit that holds the chosen candidate (or the failure).
+    pub(super) fn unit(&self) -> usize {
+        match self {
+            Decision::Failed(u) => *u,
+            Decision::Chosen {
+                candidates, best, ..
+            } => candidates[*best].0,
+        }
+    }
+}
+
+/// The choice among the units' candidates, from their `summaries` (of every share): the
+/// candidates of the single-direction unit, then split and merge's best seed (a seed whose
+/// cells or blocks an earlier seed had is skipped, and the first of equal times kept), and of
+/// these the lowest compared time, near-ties going to the simpler. The first unit that failed
+/// decides instead.
+pub(super) fn decide(
+    summaries: &[UnitSummary],
+    methods: &[Decomposition],
+) -> Result<Decision, PlanError> {
+    let missing = || PlanError::new(ErrorCode::Internal, "a part of the plan's work is missing");
+    let mut candidates: Vec<(usize, usize, f64, DecompositionCandidate)> = Vec::new();
+    let mut seen = Seen::default();
+    let mut best_seed: Option<(usize, &Scored)> = None;
+    let mut seed_evaluations = 0;
+    for (u, unit) in units(methods).into_iter().enumerate() {
+        let s = summaries.iter().find(|s| s.unit == u).ok_or_else(missing)?;
+        if s.failed {
+            return Ok(Decision::Failed(u));
+        }
+        if unit == Unit::Single {
+            for (k, c) in s.candidates.iter().enumerate() {
+                candidates.push((u, k, c.compared_s, c.figures.clone()));
+            }
+            continue;
+        }
+        if let Some(start) = &s.start {
+            if seen.starts.iter().any(|t| same_blocks(t, start)) {
+                continue;
+            }
+            seen.starts.push(start.clone());
+        }
+        seed_evaluations += s.evaluations;
+        let result = s.result.as_ref().ok_or_else(missing)?;
+        if seen.results.iter().any(|r| same_blocks(r, result)) {
+            continue;
+        }
+        seen.results.push(result.clone());
+        let c = s.candidates.first().ok_or_else(missing)?;
+        if best_seed.is_none_or(|(_, b)| c.compared_s < b.compared_s) {
+            best_seed = Some((u, c));
+        }
+    }
+    if let Some((u, c)) = best_seed {
+        let figures = DecompositionCandidate {
+            evaluations: seed_evaluations,
+            ..c.figures.clone()
+        };
+        candidates.push((u, 0, c.compared_s, figures));
     }
     // `choose` picks among them: there must be one (split and merge always gives a plan from
     // its first seed, or an error).
@@ -148,85 +352,81 @@ pub(super) fn work_candidates(
             "no decomposition gave a plan",
         ));
     }
-    Ok(candidates)
+    let times: Vec<f64> = candidates.iter().map(|c| c.2).collect();
+    let best = fastest(&times);
+    Ok(Decision::Chosen {
+        best,
+        seed_evaluations,
+        figures: candidates.iter().map(|c| c.3.clone()).collect(),
+        candidates: candidates.into_iter().map(|(u, k, _, _)| (u, k)).collect(),
+    })
 }
 
-/// Split and merge from each of its seeds, the plan of lowest estimated time.
-///
-/// The greedy selection cannot see what a block leaves behind: it is started several ways and
-/// the plan of lowest estimated time kept. A start (or a result) equal to an earlier seed's
-/// would plan the same again: it is skipped.
-fn best_split_merge(prep: &Prepared, times: &mut StageTimes) -> Result<Option<Worked>, PlanError> {
-    let mut best: Option<Worked> = None;
-    let mut evaluations = 0;
-    let mut starts: Vec<Vec<BlockSignature>> = Vec::new();
-    let mut results: Vec<Vec<BlockSignature>> = Vec::new();
-    for seed in SPLIT_MERGE_SEEDS {
-        let mut clock = Instant::now();
-        let sm = decompose_seed(prep, seed, &mut starts)?;
-        times.lap(&mut clock, |t| &mut t.decomposition);
-        let Some(sm) = sm else { continue };
-        evaluations += sm.evaluations;
-        let result = signatures(&sm.blocks);
-        if results.iter().any(|r| same_blocks(r, &result)) {
-            continue;
-        }
-        results.push(result);
-        let w = work(prep, Decomposition::SplitMerge, Some(sm), None, times)?;
-        if best
-            .as_ref()
-            .is_none_or(|b| w.compared_time() < b.compared_time())
-        {
-            best = Some(w);
-        }
-    }
-    Ok(best.map(|mut b| {
-        b.decomposition_evaluations = evaluations;
-        b
-    }))
-}
-
-/// The candidate of lowest compared time (see [`Worked::compared_time`]), with the report of
-/// the choice: `methods` are the decompositions the candidates were worked from, `left_out`
-/// why split and merge was not.
+/// The candidate `decision` chose, taken from `outcomes` (which must hold its unit), with the
+/// report of the choice; or the error of the unit that failed.
 pub(super) fn choose(
-    mut candidates: Vec<Worked>,
-    requested: Decomposition,
-    methods: &[Decomposition],
-    left_out: Option<String>,
-) -> (Worked, DecompositionReport) {
-    let best = fastest(&candidates);
-    let figures: Vec<DecompositionCandidate> = candidates.iter().map(Worked::figures).collect();
-    let shared = candidates[best]
+    prep: &Prepared,
+    decision: Decision,
+    outcomes: &mut [Outcome],
+) -> Result<(Worked, DecompositionReport), PlanError> {
+    let unit = decision.unit();
+    let outcome = outcomes
+        .iter_mut()
+        .find(|o| o.summary.unit == unit)
+        .ok_or_else(|| PlanError::new(ErrorCode::Internal, "the chosen plan is elsewhere"))?;
+    let Decision::Chosen {
+        candidates,
+        figures,
+        best,
+        seed_evaluations,
+    } = decision
+    else {
+        return Err(outcome
+            .error
+            .take()
+            .unwrap_or_else(|| PlanError::new(ErrorCode::Internal, "a part of the plan failed")));
+    };
+    let k = candidates[best].1;
+    if k >= outcome.worked.len() {
+        return Err(PlanError::new(
+            ErrorCode::Internal,
+            "the chosen plan is missing",
+        ));
+    }
+    let shared = outcome.worked[k]
         .shares_path
         .then(|| {
-            let none = candidates
+            let none = outcome
+                .worked
                 .iter()
                 .position(|c| c.method == Decomposition::None)?;
-            Some(std::mem::take(&mut candidates[none].path))
+            Some(std::mem::take(&mut outcome.worked[none].path))
         })
         .flatten();
-    let mut chosen = candidates.swap_remove(best);
+    let mut chosen = outcome.worked.swap_remove(k);
     if let Some(path) = shared {
         chosen.path = path;
     }
-    let reason = reason(chosen.method, &figures, left_out);
+    if chosen.method == Decomposition::SplitMerge {
+        chosen.decomposition_evaluations = seed_evaluations;
+    }
+    let reason = reason(chosen.method, &figures, prep.left_out.clone());
     let report = DecompositionReport {
-        requested,
-        method: methods[best],
+        requested: prep.options.decomposition,
+        method: chosen.method,
         reason,
         candidates: figures,
     };
-    (chosen, report)
+    Ok((chosen, report))
 }
 
-/// The index of the candidate of lowest compared time; near-ties go to the simpler
+/// The index of the lowest of the candidates' compared `times`; near-ties go to the simpler
 /// decomposition (the candidates come simplest first).
-fn fastest(candidates: &[Worked]) -> usize {
+fn fastest(times: &[f64]) -> usize {
     let mut best = 0;
-    for (i, c) in candidates.iter().enumerate() {
-        let b = candidates[best].compared_time();
-        if c.compared_time() < b - (b * 1e-3).max(1.0) {
+    for (i, &t) in times.iter().enumerate() {
+        let b = times[best];
+        if t < b - (b * 1e-3).max(1.0) {
             best = i;
         }
     }
@@ -282,6 +482,14 @@ impl Worked {
             + crossings * CROSSING_PENALTY_S
     }
 
+    /// What the choice needs of the candidate: its compared time and its figures.
+    fn scored(&self) -> Scored {
+        Scored {
+            compared_s: self.compared_time(),
+            figures: self.figures(),
+        }
+    }
+
     /// The candidate's figures in the decomposition report: its blocks and their directions,
     /// swaths, turns, time and the crop it leaves.
     fn figures(&self) -> DecompositionCandidate {
@@ -325,17 +533,13 @@ fn minutes(seconds: f64) -> String {
     }
 }
 
-/// The split-and-merge decomposition of the inner field from `seed`; `None` when the seed's
-/// cells are those of a seed in `starts` (improving them again would give the same blocks).
-/// Cells seeds add their cells' signatures to `starts`.
-fn decompose_seed(
-    prep: &Prepared,
-    seed: Seed,
-    starts: &mut Vec<Vec<BlockSignature>>,
-) -> Result<Option<SplitMerge>, PlanError> {
-    let (field, options) = (prep.field, prep.options);
-    let orders = route_settings(options, field).orders;
-    let settings = SplitMergeSettings {
+/// The settings split and merge works with.
+fn split_merge_settings<'a>(
+    prep: &'a Prepared,
+    orders: &'a [SwathOrder],
+) -> SplitMergeSettings<'a> {
+    let (field, options) = (&prep.field, &prep.options);
+    SplitMergeSettings {
         width: options.width,
         min_length: options.min_swath_length_m(),
         machine: options.machine(),
@@ -346,51 +550,77 @@ fn decompose_seed(
         criterion: Criterion::default(),
         min_end_angle: MIN_END_ANGLE_DEG.to_radians(),
         tolerance: options.width * DECOMPOSITION_TOLERANCE,
-        orders: &orders,
-    };
-    let inner = &prep.headlands.inner;
+        orders,
+    }
+}
+
+/// The cells a cells seed starts from, at the field's direction, and the parts no swath works
+/// (`None` for the greedy selection, which starts from the whole inner field).
+fn seed_cells(
+    prep: &Prepared,
+    seed: Seed,
+    settings: &SplitMergeSettings,
+) -> Option<(Vec<BlockArea>, Vec<usize>)> {
     let rule = match seed {
-        Seed::Greedy(substantial_share) => {
-            let criterion = Criterion {
-                substantial_share,
-                ..Criterion::default()
-            };
-            return split_merge(
-                inner,
-                &SplitMergeSettings {
-                    criterion,
-                    ..settings
-                },
-            )
-            .map(Some);
-        }
+        Seed::Greedy(_) => return None,
         Seed::Cells => MergeRule::Boustrophedon,
         Seed::OksanenCells => MergeRule::SplitMerge {
             min_end_angle: settings.min_end_angle,
         },
     };
-    let (blocks, not_worked) = cells_at(inner, prep.direction.bearing, rule, &settings);
-    let start = signatures(&blocks);
-    if starts.iter().any(|s| same_blocks(s, &start)) {
-        return Ok(None);
+    Some(cells_at(
+        &prep.headlands.inner,
+        prep.direction.bearing,
+        rule,
+        settings,
+    ))
+}
+
+/// The split-and-merge decomposition of the inner field from `seed`: the greedy selection, or
+/// the cells `start` improved.
+fn improve_seed(
+    prep: &Prepared,
+    seed: Seed,
+    start: Option<(Vec<BlockArea>, Vec<usize>)>,
+    settings: &SplitMergeSettings,
+) -> Result<SplitMerge, PlanError> {
+    match (seed, start) {
+        (_, Some((blocks, not_worked))) => {
+            let (blocks, evaluations) = improve(blocks, settings)?;
+            Ok(SplitMerge {
+                blocks,
+                evaluations,
+                not_worked,
+            })
+        }
+        (Seed::Greedy(substantial_share), None) => {
+            let criterion = Criterion {
+                substantial_share,
+                ..Criterion::default()
+            };
+            split_merge(
+                &prep.headlands.inner,
+                &SplitMergeSettings {
+                    criterion,
+                    ..*settings
+                },
+            )
+        }
+        (_, None) => Err(PlanError::new(
+            ErrorCode::Internal,
+            "a cells seed without its cells",
+        )),
     }
-    starts.push(start);
-    let (blocks, evaluations) = improve(blocks, &settings)?;
-    Ok(Some(SplitMerge {
-        blocks,
-        evaluations,
-        not_worked,
-    }))
 }
 
 /// What tells blocks apart when seeds are compared: direction, area and centroid. Two
 /// decompositions whose blocks agree in these (to rounding) are the same decomposition, with
 /// their rings perhaps starting at other corners.
-#[derive(Debug, Clone, Copy)]
-struct BlockSignature {
-    bearing: f64,
-    area_m2: f64,
-    centroid: geo::Coord,
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) struct BlockSignature {
+    pub(super) bearing: f64,
+    pub(super) area_m2: f64,
+    pub(super) centroid: geo::Coord,
 }
 
 fn signatures(blocks: &[BlockArea]) -> Vec<BlockSignature> {

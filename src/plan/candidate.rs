@@ -67,7 +67,7 @@ pub(super) fn work(
     };
     lift_over_small_obstacles(prep, &mut laid);
     laid.warnings
-        .extend(short_pieces_dropped(&laid.swaths, prep.options));
+        .extend(short_pieces_dropped(&laid.swaths, &prep.options));
     let blocks = cluster_swaths(&laid.swaths);
     within_block_limit(&blocks, prep.options.width)?;
     times.lap(&mut clock, |t| &mut t.decomposition);
@@ -118,7 +118,7 @@ pub(super) fn fill_leftovers(
     times: &mut StageTimes,
 ) -> Result<(Worked, Coverage), PlanError> {
     let mut clock = Instant::now();
-    let options = prep.options;
+    let options = &prep.options;
     let width = options.width;
     let obstacles: Vec<geo::Polygon> = prep
         .field
@@ -280,7 +280,7 @@ fn route_and_path(
         .then(|| {
             let settings = RouteSettings {
                 crop: Some(laid.headlands.inner.clone()),
-                ..route_settings(prep.options, prep.field)
+                ..route_settings(&prep.options, &prep.field)
             };
             (headland_graph(&laid.headlands.passes, &settings), settings)
         });
@@ -288,7 +288,7 @@ fn route_and_path(
     let (graph, settings) = match &own {
         Some((graph, settings)) => (graph, settings),
         None => {
-            field_settings = route_settings(prep.options, prep.field);
+            field_settings = route_settings(&prep.options, &prep.field);
             (&prep.graph, &field_settings)
         }
     };
@@ -321,10 +321,10 @@ fn route_and_path(
         ));
     };
     times.lap(&mut clock, |t| &mut t.path);
-    warnings.extend(turns_leaving(path, prep.options));
+    warnings.extend(turns_leaving(path, &prep.options));
     warnings.extend(lifted_at_edges(path, prep));
-    warnings.extend(connections_leaving(path, prep.options));
-    warnings.extend(crop_crossed(path, prep.options, SegmentKind::Connection));
+    warnings.extend(connections_leaving(path, &prep.options));
+    warnings.extend(crop_crossed(path, &prep.options, SegmentKind::Connection));
     let summary = measure(prep, laid, blocks, &route, path, prep.options.machine());
     times.lap(&mut clock, |t| &mut t.metrics);
     Ok((route, built, summary))
@@ -347,7 +347,7 @@ struct Laid {
 /// Split and merge's blocks: their own headland passes where they need them, and the swaths of
 /// each at its own direction.
 fn lay_split_merge(prep: &Prepared, sm: SplitMerge) -> Result<Laid, PlanError> {
-    let (field, options) = (prep.field, prep.options);
+    let (field, options) = (&prep.field, &prep.options);
     let width = options.width;
     let mut headlands = prep.headlands.clone();
     let warnings = sm
@@ -433,7 +433,7 @@ fn lay_single_direction(prep: &Prepared, method: Decomposition) -> Result<Laid, 
 /// Marks where the swaths pass over obstacles too small for a headland of their own (class A),
 /// to be driven with the implement lifted, with a warning for each.
 fn lift_over_small_obstacles(prep: &Prepared, laid: &mut Laid) {
-    let field = prep.field;
+    let field = &prep.field;
     let small: Vec<(usize, &geo::Polygon)> = field
         .obstacles
         .iter()
@@ -520,7 +520,7 @@ fn measure(
     path: &Path,
     machine: Machine,
 ) -> Summary {
-    let options = prep.options;
+    let options = &prep.options;
     let stats = measure_all(&laid.swaths, &machine);
     let mode = prep.direction.mode;
     let direction = DirectionReport {
@@ -532,8 +532,8 @@ fn measure(
         search_cost: prep.direction.search_cost,
     };
     summarise(
-        prep.field,
-        prep.obstacles,
+        &prep.field,
+        &prep.obstacles,
         &laid.headlands,
         &laid.swaths,
         blocks,
