@@ -95,6 +95,53 @@ test("the package plans in Chromium", { timeout: 60_000 }, async () => {
   }
 });
 
+test("a pool of 2 Web Workers (furrow/pool) plans every corpus field as plan() does in Chromium", { timeout: 120_000 }, async () => {
+  const server = await startServer(SITE, 0);
+  const browser = await launchChromium();
+  try {
+    const page = await browser.newPage();
+    const problems = [];
+    page.on("console", (m) => m.type() === "error" && problems.push(m.text()));
+    page.on("pageerror", (e) => problems.push(String(e)));
+    await page.goto(`http://127.0.0.1:${server.address().port}/fields/index.json`);
+    const result = await page.evaluate(async () => {
+      const furrow = await import("/pkg/furrow.js");
+      const { PlannerPool, FurrowError } = await import("/pkg/pool.js");
+      await furrow.default();
+      const pool = new PlannerPool({ workers: 2 });
+      // A plan without its planning times; its samples as plain arrays.
+      const comparable = (plan) => {
+        const { planning_ms, stages_ms, ...summary } = plan.summary;
+        const samples = Object.fromEntries(Object.entries(plan.samples).map(([k, v]) => [k, Array.from(v)]));
+        return JSON.stringify({ ...plan, summary, samples });
+      };
+      const fields = await (await fetch("/fields/index.json")).json();
+      const out = { differ: [], planned: 0 };
+      for (const f of fields) {
+        const geojson = await (await fetch(`/${f.file}`)).json();
+        const options = { width: f.width, headlandPasses: f.headlandPasses, turnRadius: f.turnRadius };
+        const pooled = await pool.plan(geojson, options);
+        if (comparable(pooled) !== comparable(furrow.plan(geojson, options))) out.differ.push(f.name);
+        out.planned++;
+      }
+      try {
+        await pool.plan({ type: "Polygon", coordinates: [[[0, 0], [1, 1], [1, 0], [0, 1], [0, 0]]] });
+      } catch (e) {
+        out.error = { isFurrowError: e instanceof FurrowError, code: e.code };
+      }
+      pool.terminate();
+      return out;
+    });
+    assert.ok(result.planned >= 20);
+    assert.deepEqual(result.differ, []);
+    assert.deepEqual(result.error, { isFurrowError: true, code: "self_intersection" });
+    assert.deepEqual(problems, []);
+  } finally {
+    await browser.close();
+    server.close();
+  }
+});
+
 test("an app bundled by esbuild as the package's README says plans in Chromium", { timeout: 60_000 }, async () => {
   const dir = installLinked("esbuild");
   writeFileSync(

@@ -5,8 +5,9 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh rust npm
 
-# The package holds three WebAssembly modules built from the same crate, each with one feature
-# (Cargo.toml): the planner (furrow_wasm, the package's main entry), the shortest paths along
+# The package holds four WebAssembly modules built from the same crate, each with one feature
+# (Cargo.toml): the planner (furrow_wasm, the package's main entry), the planner with planning
+# in shares for the workers of "furrow/pool" (furrow_pool_wasm), the shortest paths along
 # a plan's tracks (furrow_tracks_wasm, the "furrow/tracks" entry) and the field files' readers
 # (furrow_formats_wasm, "furrow/formats"), so that a page that only plans never loads the
 # others' code.
@@ -45,6 +46,7 @@ build_module() { # feature, wasm-bindgen output name
     "pkg/$2_bg.wasm" -o "pkg/$2_bg.wasm"
 }
 build_module planner-api furrow_wasm
+build_module pool-api furrow_pool_wasm
 build_module tracks-api furrow_tracks_wasm
 build_module formats-api furrow_formats_wasm
 # proj4rs compiles its own JavaScript API (Point, Projection, transform, add_nadgrid) into every
@@ -59,7 +61,7 @@ node -e '
   if (/export class|Symbol\.dispose/.test(dts)) throw new Error(file + ": a class of proj4rs is left");
   fs.writeFileSync(file, dts);
 '
-cp js/furrow.js js/furrow.d.ts js/tracks.js js/tracks.d.ts js/formats.js js/formats.d.ts js/load.js LICENSE-MIT LICENSE-APACHE pkg/
+cp js/furrow.js js/furrow.d.ts js/pool.js js/pool.d.ts js/pool-worker.js js/tracks.js js/tracks.d.ts js/formats.js js/formats.d.ts js/load.js LICENSE-MIT LICENSE-APACHE pkg/
 # Debian's wasm-opt (binaryen 108) produces a module that fails to load: only npm's (above) is used.
 
 version=$(awk -F'"' '/^version = / { print $2; exit }' Cargo.toml)
@@ -83,14 +85,16 @@ cat > pkg/package.json <<JSON
   "types": "furrow.d.ts",
   "exports": {
     ".": { "types": "./furrow.d.ts", "default": "./furrow.js" },
+    "./pool": { "types": "./pool.d.ts", "default": "./pool.js" },
     "./tracks": { "types": "./tracks.d.ts", "default": "./tracks.js" },
     "./formats": { "types": "./formats.d.ts", "default": "./formats.js" },
     "./furrow_wasm_bg.wasm": "./furrow_wasm_bg.wasm",
+    "./furrow_pool_wasm_bg.wasm": "./furrow_pool_wasm_bg.wasm",
     "./furrow_tracks_wasm_bg.wasm": "./furrow_tracks_wasm_bg.wasm",
     "./furrow_formats_wasm_bg.wasm": "./furrow_formats_wasm_bg.wasm",
     "./package.json": "./package.json"
   },
-  "files": ["furrow.js", "furrow.d.ts", "load.js", "furrow_wasm.js", "furrow_wasm.d.ts", "furrow_wasm_bg.wasm", "furrow_wasm_bg.wasm.d.ts", "tracks.js", "tracks.d.ts", "furrow_tracks_wasm.js", "furrow_tracks_wasm.d.ts", "furrow_tracks_wasm_bg.wasm", "furrow_tracks_wasm_bg.wasm.d.ts", "formats.js", "formats.d.ts", "furrow_formats_wasm.js", "furrow_formats_wasm.d.ts", "furrow_formats_wasm_bg.wasm", "furrow_formats_wasm_bg.wasm.d.ts", "README.md", "LICENSE-MIT", "LICENSE-APACHE"],
+  "files": ["furrow.js", "furrow.d.ts", "load.js", "furrow_wasm.js", "furrow_wasm.d.ts", "furrow_wasm_bg.wasm", "furrow_wasm_bg.wasm.d.ts", "pool.js", "pool.d.ts", "pool-worker.js", "furrow_pool_wasm.js", "furrow_pool_wasm.d.ts", "furrow_pool_wasm_bg.wasm", "furrow_pool_wasm_bg.wasm.d.ts", "tracks.js", "tracks.d.ts", "furrow_tracks_wasm.js", "furrow_tracks_wasm.d.ts", "furrow_tracks_wasm_bg.wasm", "furrow_tracks_wasm_bg.wasm.d.ts", "formats.js", "formats.d.ts", "furrow_formats_wasm.js", "furrow_formats_wasm.d.ts", "furrow_formats_wasm_bg.wasm", "furrow_formats_wasm_bg.wasm.d.ts", "README.md", "LICENSE-MIT", "LICENSE-APACHE"],
   "engines": { "node": ">=18" },
   "sideEffects": false,
   "keywords": ["agriculture", "coverage path planning", "geojson", "wasm", "tractor"]
@@ -99,7 +103,7 @@ JSON
 cp js/README.md pkg/README.md
 # Gzipped as the bench measures it against the 400 KB target (Node's zlib at level 9; GNU gzip
 # comes out about 2.4 KB smaller).
-for module in furrow_wasm furrow_tracks_wasm furrow_formats_wasm; do
+for module in furrow_wasm furrow_pool_wasm furrow_tracks_wasm furrow_formats_wasm; do
   raw=$(wc -c < "pkg/${module}_bg.wasm")
   gz=$(node -e 'process.stdout.write(String(require("zlib").gzipSync(require("fs").readFileSync(process.argv[1]), { level: 9 }).length))' "pkg/${module}_bg.wasm")
   echo "[build] pkg/${module}_bg.wasm: $raw bytes, $gz gzipped (Node's zlib, level 9)"

@@ -87,3 +87,20 @@ export async function planFirstParcel(zip: Uint8Array, parts?: { name: string; b
   const crs: string = file.source.crs;
   return plan(file.features[0], { width: 6, headlandPasses: crs.startsWith("EPSG") ? 2 : 1 });
 }
+
+// Planning in a pool of workers (furrow/pool).
+import { MAX_WORKERS, PlannerPool, planInWorkers, FurrowError as PoolError } from "furrow/pool";
+
+export async function planInPool(field: FieldInput, options: PlanOptions): Promise<[Plan, Plan, number]> {
+  const pool = new PlannerPool({ workers: Math.min(2, MAX_WORKERS) });
+  try {
+    const a: Plan = await pool.plan(field, options);
+    const b: Plan = await planInWorkers(field, options, { workers: pool.size });
+    return [a, b, a.summary.swath_count];
+  } catch (e) {
+    if (e instanceof PoolError) throw new Error(e.code);
+    throw e;
+  } finally {
+    pool.terminate();
+  }
+}

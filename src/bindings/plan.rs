@@ -12,8 +12,10 @@ use crate::field::{geojson, validate};
 use crate::options::{PlanOptions, DEFAULT_OPTIONS_JSON};
 use crate::output::json::to_json_string;
 use crate::plan::plan_stages;
+#[cfg(feature = "pool-api")]
 use crate::plan::share::{decode, encode, Pending, Share};
-use std::cell::RefCell;
+#[cfg(feature = "pool-api")]
+use std::cell::Cell;
 use wasm_bindgen::prelude::*;
 use web_time::Instant;
 
@@ -33,15 +35,21 @@ pub fn plan_js(field: JsValue, options: JsValue) -> Result<JsValue, JsValue> {
     plan_result(plan, started, read_ms)
 }
 
+/// A plan begun by [`plan_share`], with when its reading began and how long it took.
+#[cfg(feature = "pool-api")]
+type Begun = Box<(Pending, Instant, f64)>;
+
+#[cfg(feature = "pool-api")]
 thread_local! {
-    /// The plan begun by [`plan_share`], with when its reading began and how long it took.
-    static PENDING: RefCell<Option<(Pending, Instant, f64)>> = const { RefCell::new(None) };
+    /// The plan [`plan_share`] began, until [`finish_share`] takes it.
+    static PENDING: Cell<Option<Begun>> = const { Cell::new(None) };
 }
 
 /// Begins share `index` of `of` of a plan (the package's worker pool, `furrow/pool`): reads
 /// and checks the field, lays its headlands and works this share's candidates. Returns their
 /// summaries as numbers, for every share's [`finish_share`]. A plan begun before and not
 /// finished is dropped.
+#[cfg(feature = "pool-api")]
 #[wasm_bindgen(js_name = planShare, skip_typescript)]
 pub fn plan_share(
     field: JsValue,
@@ -49,7 +57,7 @@ pub fn plan_share(
     index: u32,
     of: u32,
 ) -> Result<js_sys::Float64Array, JsValue> {
-    PENDING.with(|p| p.borrow_mut().take());
+    PENDING.with(Cell::take);
     let started = Instant::now();
     let options = read_options(options).map_err(|e| to_js_error(&e))?;
     let (field, warnings) = read_field(field, &options).map_err(|e| to_js_error(&e))?;
@@ -60,17 +68,18 @@ pub fn plan_share(
     };
     let pending = Pending::start(field, &options, warnings, share).map_err(|e| to_js_error(&e))?;
     let numbers = encode(&pending.summaries());
-    PENDING.with(|p| *p.borrow_mut() = Some((pending, started, read_ms)));
+    PENDING.with(|p| p.set(Some(Box::new((pending, started, read_ms)))));
     Ok(js_sys::Float64Array::from(&numbers[..]))
 }
 
 /// Finishes the plan [`plan_share`] began, given every share's summaries (one after another):
 /// the plan, as [`plan_js`] gives it, where this share holds the candidate chosen; else `null`.
+#[cfg(feature = "pool-api")]
 #[wasm_bindgen(js_name = finishShare, skip_typescript)]
 pub fn finish_share(summaries: &[f64]) -> Result<JsValue, JsValue> {
     let internal = |m: &str| to_js_error(&PlanError::new(ErrorCode::Internal, m));
-    let (pending, started, read_ms) = PENDING
-        .with(|p| p.borrow_mut().take())
+    let (pending, started, read_ms) = *PENDING
+        .with(Cell::take)
         .ok_or_else(|| internal("no plan was begun in this share"))?;
     let summaries =
         decode(summaries).ok_or_else(|| internal("the shares' summaries are unreadable"))?;
