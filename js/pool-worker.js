@@ -6,8 +6,8 @@
 // Messages in: `{ init: input }` first (furrow_pool_wasm_bg.wasm: undefined to load it from
 // beside this file, or a compiled WebAssembly.Module); then `{ id, start: { field, options,
 // index, of } }` and `{ id, finish: Float64Array }`. Out: `{ ready: true }` or `{ failed: error }`
-// once loaded; `{ id, summaries: Float64Array }`, `{ id, plan }` (the plan, or null where another
-// share finishes it) or `{ id, error: { message, code, ... } }`. The samples' and summaries'
+// once loaded; `{ id, summaries: Float64Array }`, `{ id, plan }` (the plan with its GeoJSON as text
+// in `json` beside `samples`, or null where another share finishes it) or `{ id, error: { message, code, ... } }`. The samples' and summaries'
 // buffers are transferred, not copied.
 import * as core from "./furrow_pool_wasm.js";
 import { loader } from "./load.js";

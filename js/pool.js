@@ -199,8 +199,12 @@ export class PlannerPool {
       const finished = await this.#round(workers, () => ({ finish: all }));
       const error = finished.find((r) => r.error);
       if (error) throw fromPlain(error.error);
-      const plan = finished.find((r) => r.plan)?.plan;
-      if (!plan) throw new FurrowError("no worker finished the plan", { code: "internal" });
+      const done = finished.find((r) => r.plan)?.plan;
+      if (!done) throw new FurrowError("no worker finished the plan", { code: "internal" });
+      // The worker sends the GeoJSON as text: a string crosses threads far cheaper than the
+      // object it parses to.
+      const plan = JSON.parse(done.json);
+      plan.samples = done.samples;
       return plan;
     } finally {
       for (const w of workers) w.busy(false);

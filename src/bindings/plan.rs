@@ -32,7 +32,7 @@ pub fn plan_js(field: JsValue, options: JsValue) -> Result<JsValue, JsValue> {
     let (field, warnings) = read_field(field, &options).map_err(|e| to_js_error(&e))?;
     let read_ms = started.elapsed().as_secs_f64() * 1000.0;
     let plan = plan_stages(field, &options, warnings).map_err(|e| to_js_error(&e))?;
-    plan_result(plan, started, read_ms)
+    plan_result(plan, started, read_ms, false)
 }
 
 /// A plan begun by [`plan_share`], with when its reading began and how long it took.
@@ -73,7 +73,9 @@ pub fn plan_share(
 }
 
 /// Finishes the plan [`plan_share`] began, given every share's summaries (one after another):
-/// the plan, as [`plan_js`] gives it, where this share holds the candidate chosen; else `null`.
+/// where this share holds the candidate chosen, the plan as [`plan_js`] gives it but with its
+/// GeoJSON as text in `json` beside `samples` (a string crosses to the page's thread far
+/// cheaper than the object, which the page then parses); else `null`.
 #[cfg(feature = "pool-api")]
 #[wasm_bindgen(js_name = finishShare, skip_typescript)]
 pub fn finish_share(summaries: &[f64]) -> Result<JsValue, JsValue> {
@@ -85,7 +87,7 @@ pub fn finish_share(summaries: &[f64]) -> Result<JsValue, JsValue> {
         decode(summaries).ok_or_else(|| internal("the shares' summaries are unreadable"))?;
     match pending.finish(&summaries) {
         None => Ok(JsValue::NULL),
-        Some(plan) => plan_result(plan.map_err(|e| to_js_error(&e))?, started, read_ms),
+        Some(plan) => plan_result(plan.map_err(|e| to_js_error(&e))?, started, read_ms, true),
     }
 }
 
@@ -114,12 +116,14 @@ fn read_field(
     validate::field_from_input(input, options.coordinates)
 }
 
-/// The plan as JavaScript: its GeoJSON with `summary` and `warnings`, and the sampled path's
-/// columns as typed arrays. `read_ms` (reading the input) counts to the validation stage.
+/// The plan as JavaScript: its GeoJSON with `summary` and `warnings` (or, `as_text`, the
+/// GeoJSON's text as `json`), and the sampled path's columns as typed arrays in `samples`.
+/// `read_ms` (reading the input) counts to the validation stage.
 fn plan_result(
     mut plan: crate::plan::Plan,
     started: Instant,
     read_ms: f64,
+    as_text: bool,
 ) -> Result<JsValue, JsValue> {
     plan.summary.planning_ms = started.elapsed().as_secs_f64() * 1000.0;
     plan.summary.stages_ms.validation += read_ms;
@@ -131,7 +135,13 @@ fn plan_result(
             format!("the plan could not be written: {e}"),
         ))
     })?;
-    let result = js_sys::JSON::parse(&text)?;
+    let result = if as_text {
+        let object = js_sys::Object::new();
+        js_sys::Reflect::set(&object, &JsValue::from_str("json"), &JsValue::from_str(&text))?;
+        object.into()
+    } else {
+        js_sys::JSON::parse(&text)?
+    };
     // The text is JavaScript's now: its memory goes back before the samples take theirs (a plan
     // of 100,000 swaths has 80 MB of it).
     drop(text);
