@@ -829,6 +829,52 @@ test("viewer: plans in a worker; rapid edits on the large field keep the page re
   });
 });
 
+test("viewer: slow full plans go to a pool of workers, the same plan, and the way out runs along it", { timeout: TIMEOUT }, async () => {
+  await withViewer({ viewport: { width: 1280, height: 800 }, deviceScaleFactor: 1 }, async (page, base) => {
+    // A tablet of four cores: the pool takes three, one is left to the page. (This machine may
+    // have fewer; the plans are the same.)
+    await page.addInitScript(() => Object.defineProperty(navigator, "hardwareConcurrency", { get: () => 4 }));
+    await page.goto(`${base}#large-250ha-10-obstacles`);
+    await planned(page);
+    // The first plan is the worker's; it takes far over 40 ms, so the next goes to the pool.
+    assert.equal((await dataset(page)).pooled, "false");
+    const width = (await page.evaluate(() => window.furrow.options.width)) + 1;
+    await setInput(page, "width", width);
+    await page.waitForFunction((w) => window.furrow.options.width === w, width);
+    await planned(page);
+    assert.equal((await dataset(page)).pooled, "true");
+    // The way out from the middle of a swath, facing its end, to the field's first corner:
+    // the worker finds it along the pooled plan's tracks, as the package does on plan().
+    const [shown, direct] = await page.evaluate(async () => {
+      const { field, options, plan, way } = window.furrow;
+      const sw = plan.features.filter((f) => f.properties.kind === "swath")[10];
+      const [a, b] = [sw.geometry.coordinates[0], sw.geometry.coordinates.at(-1)];
+      way.position = [(a[0] + b[0]) / 2, (a[1] + b[1]) / 2];
+      const p = window.furrow.projection;
+      const [fa, fb] = [p.forward(a), p.forward(b)];
+      way.heading = ((Math.atan2(fb[0] - fa[0], fb[1] - fa[1]) * 180) / Math.PI + 360) % 360;
+      way.exit = window.furrow.document.features[0].geometry.coordinates[0][0];
+      await way.find();
+      const furrow = await import("./pkg/furrow.js");
+      await furrow.default();
+      const again = furrow.plan(field, options);
+      const tracks = await import("./pkg/tracks.js");
+      await tracks.default();
+      const graph = new tracks.TrackGraph(again, { turning: way.turning() });
+      const expected = graph.shortestPath(way.position, way.heading, way.exit, { turning: way.turning() });
+      graph.free();
+      const summary = (s) => JSON.stringify({ ...s, planning_ms: 0, stages_ms: 0 });
+      return [
+        { summary: summary(plan.summary), length: way.path?.properties.length_m, error: way.error },
+        { summary: summary(again.summary), length: expected.properties.length_m },
+      ];
+    });
+    assert.equal(shown.summary, direct.summary, "the pool's plan is plan()'s");
+    assert.equal(shown.error, null);
+    assert.equal(shown.length, direct.length);
+  });
+});
+
 test("viewer: swath order and reversing turns are settings", { timeout: TIMEOUT }, async () => {
   await withViewer({ viewport: { width: 1280, height: 800 }, deviceScaleFactor: 1 }, async (page, base) => {
     await page.goto(`${base}#rectangle`);

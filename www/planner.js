@@ -17,8 +17,18 @@
 // The newest call wins: while one plan runs, calls wait in a queue of one, and each new call
 // replaces the one waiting (which resolves as stale). Dragging a vertex thus plans the newest
 // shape as soon as the planner is free, never a backlog of old ones.
+//
+// Once a full plan (decomposition "auto") has taken longer than POOL_AFTER_MS in the worker, and
+// the device has three cores or more, full plans go to a pool of workers (the package's
+// furrow/pool), which plans auto's candidates side by side: the same plan, sooner on fields with
+// obstacles and large ones (result.pooled is then true). The worker keeps the previews, the ways
+// and the files; the pool's last plan goes to it with the next way asked.
 import { plainError } from "./errors.js";
 import { readFieldFile } from "./reading.js";
+import { MAX_WORKERS, PlannerPool } from "./pkg/pool.js";
+
+/** Full plans slower than this (ms) in the worker send the next ones to a pool of workers. */
+const POOL_AFTER_MS = 40;
 
 let ready = null;
 let worker = null;
@@ -29,6 +39,8 @@ let waiting = null; // the newest call not yet started
 let lastPlan = null; // in the page: the last plan made, for its tracks
 let inPageTracks = null; // in the page: furrow/tracks (loaded on the first way asked), and the graph of lastPlan
 const calls = new Map(); // id -> resolve, for the ways and files asked of the worker
+let pool = null; // furrow/pool's PlannerPool, once full plans have proved slow
+let pooledPlan = null; // the last plan the pool made, until the worker has it for its ways
 
 /** Starts the planner once; resolves to `{ version, worker }` (worker: whether it runs in one). */
 export function initPlanner() {
@@ -92,8 +104,10 @@ function pump() {
   if (running || !waiting) return;
   running = waiting;
   waiting = null;
+  if (worker && pool && isFull(running.options)) return planInPool(running);
   if (worker) {
     try {
+      pooledPlan = null; // the worker's own plan is the newer
       worker.postMessage({ id: running.id, field: running.field, options: running.options });
     } catch (e) {
       // Something in the field or options cannot be cloned.
@@ -117,6 +131,43 @@ function pump() {
   }, 0);
 }
 
+/** Whether `options` ask for the full plan: auto's candidates, which the pool shares out. */
+function isFull(options) {
+  return (options?.decomposition ?? "auto") === "auto";
+}
+
+/** Plans `call` in the pool; where the pool cannot start, in the worker from then on. */
+function planInPool(call) {
+  const t0 = performance.now();
+  pool.plan(call.field, call.options).then(
+    (plan) => {
+      pooledPlan = { type: "FeatureCollection", features: plan.features };
+      finish({ id: call.id, plan, ms: performance.now() - t0, pooled: true });
+    },
+    (e) => {
+      if (e?.code !== "not_initialised") return finish({ id: call.id, error: plainError(e), ms: performance.now() - t0 });
+      // The pool could not start: this call and the next go to the worker.
+      pool = null;
+      running = null;
+      if (waiting) call.resolve({ id: call.id, stale: true });
+      else waiting = call;
+      pump();
+    },
+  );
+}
+
+/**
+ * Starts the pool after a full plan slower than POOL_AFTER_MS, where there are cores for it: one
+ * is left to the page, which must keep drawing while the pool plans (with every core busy, a
+ * drag's frames on the 210 ha field came up to 230 ms apart, against 130 ms with the worker
+ * alone), and a pool of one worker would only add the way there.
+ */
+function maybeStartPool(call, data) {
+  const workers = Math.min((globalThis.navigator?.hardwareConcurrency ?? 1) - 1, MAX_WORKERS);
+  if (pool || !worker || !data.plan || data.pooled || data.ms <= POOL_AFTER_MS || workers < 2) return;
+  if (isFull(call.options)) pool = new PlannerPool({ workers });
+}
+
 /**
  * The shortest way along the last plan's tracks (see TrackGraph.shortestPath in the package):
  * resolves to `{ path }` (a GeoJSON Feature) or `{ error }`, with `ms`; never rejects.
@@ -129,7 +180,9 @@ export function runPath(position, heading, target, options) {
         const t0 = performance.now();
         if (worker) {
           calls.set(id, (data) => resolve({ ...data, ms: performance.now() - t0 }));
-          worker.postMessage({ id, path: { position, heading, target, options } });
+          // The pool's last plan, where it made the plan shown: the way runs along its tracks.
+          worker.postMessage({ id, path: { position, heading, target, options, plan: pooledPlan ?? undefined } });
+          pooledPlan = null;
           return;
         }
         const done = (result) => resolve({ id, ...result, ms: performance.now() - t0 });
@@ -182,6 +235,7 @@ export function readFile(file) {
 function finish(data) {
   const call = running;
   running = null;
+  if (call) maybeStartPool(call, data);
   if (call) {
     // `ms` is the whole call as the page sees it: waiting, planning and the copy back.
     call.resolve({ ...data, id: call.id, ms: performance.now() - call.t0, planMs: data.ms });

@@ -48,6 +48,7 @@ export async function replan(how) {
   state.fitPending = false;
   if (!preview && !result.error) state.fullPlanMs = result.ms;
   document.body.dataset.planPreview = String(preview);
+  document.body.dataset.pooled = String(result.pooled === true);
   if (result.error) showPlanError(result.error);
   else showPlan(result.plan, options, result.ms);
   if (preview && !result.error) ui.status.textContent = "Preview while dragging (one direction); the full plan on release";

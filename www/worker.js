@@ -1,6 +1,7 @@
 // The planner in a Web Worker: the page stays responsive while a large field plans. Messages in:
-// `{ id, field, options }` plans; `{ id, path: { position, heading, target, options } }` asks
-// for the shortest way along the last plan's tracks (its track graph built once per plan);
+// `{ id, field, options }` plans; `{ id, path: { position, heading, target, options, plan? } }`
+// asks for the shortest way along the last plan's tracks (its track graph built once per plan;
+// `plan`, a FeatureCollection, where the page's pool made the last plan);
 // `{ id, read: file }` reads a field file (reading.js: its size and points checked, parsed for
 // drawing). Out: `{ id, plan, ms }`, `{ id, path, ms }` or `{ id, error, ms }` (the sampled
 // path's typed arrays are transferred, not copied), `{ id, read: { text, field } | { error } }`,
@@ -45,6 +46,12 @@ self.onmessage = async (event) => {
   const t0 = performance.now();
   try {
     if (path) {
+      // A plan made elsewhere (the page's pool of workers): the way runs along its tracks.
+      if (path.plan) {
+        tracks?.free();
+        tracks = null;
+        lastPlan = path.plan;
+      }
       if (!lastPlan) throw Object.assign(new Error("there is no plan to find a way along"), { code: "no_path" });
       const { TrackGraph } = await loadTracks();
       tracks ??= new TrackGraph(lastPlan, path.options);

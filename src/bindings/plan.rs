@@ -137,7 +137,11 @@ fn plan_result(
     })?;
     let result = if as_text {
         let object = js_sys::Object::new();
-        js_sys::Reflect::set(&object, &JsValue::from_str("json"), &JsValue::from_str(&text))?;
+        js_sys::Reflect::set(
+            &object,
+            &JsValue::from_str("json"),
+            &JsValue::from_str(&text),
+        )?;
         object.into()
     } else {
         js_sys::JSON::parse(&text)?

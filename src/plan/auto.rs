@@ -158,15 +158,21 @@ pub(super) struct Outcome {
 /// the work (no unit after it can matter).
 pub(super) fn work_units(prep: &mut Prepared, share: Share) -> Vec<Outcome> {
     let mut times = prep.times;
-    let prep_ = &*prep;
+    let outcomes = work_units_timed(prep, share, &mut times);
+    prep.times = times;
+    outcomes
+}
+
+/// [`work_units`], its stages' times added to `times`.
+fn work_units_timed(prep: &Prepared, share: Share, times: &mut StageTimes) -> Vec<Outcome> {
     let mut outcomes = Vec::new();
     let mut seen = share.whole().then(Seen::default);
-    for (u, unit) in units(&prep_.methods).into_iter().enumerate() {
+    for (u, unit) in units(&prep.methods).into_iter().enumerate() {
         if !share.has(u) {
             continue;
         }
         let outcome = match unit {
-            Unit::Single => work_single(prep_, &mut times).map(|worked| Outcome {
+            Unit::Single => work_single(prep, times).map(|worked| Outcome {
                 summary: UnitSummary {
                     candidates: worked.iter().map(Worked::scored).collect(),
                     ..UnitSummary::new(u)
@@ -174,7 +180,7 @@ pub(super) fn work_units(prep: &mut Prepared, share: Share) -> Vec<Outcome> {
                 worked,
                 error: None,
             }),
-            Unit::Seed(seed) => work_seed(prep_, u, seed, seen.as_mut(), &mut times),
+            Unit::Seed(seed) => work_seed(prep, u, seed, seen.as_mut(), times),
         };
         match outcome {
             Ok(o) => outcomes.push(o),
@@ -191,7 +197,6 @@ pub(super) fn work_units(prep: &mut Prepared, share: Share) -> Vec<Outcome> {
             }
         }
     }
-    prep.times = times;
     outcomes
 }
 
