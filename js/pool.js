@@ -86,6 +86,7 @@ export class PlannerPool {
     this.replies = new Map(); // id -> [resolve per worker]
     this.queue = Promise.resolve();
     this.closed = false;
+    this.broken = null; // the error of a worker that failed: the pool plans no more
     this.workers = this.#start(wasm);
     // A pool that failed to start rejects each plan; it is not an unhandled rejection itself.
     this.workers.catch(() => {});
@@ -134,6 +135,9 @@ export class PlannerPool {
   }
 
   #fail(i, error) {
+    // A worker that failed outside the planner (which recovers from its own traps) is gone:
+    // this plan and every later one fail.
+    this.broken = error;
     for (const waiting of this.replies.values()) {
       waiting[i]?.({ error: { message: error.message, code: "internal" } });
     }
@@ -173,6 +177,7 @@ export class PlannerPool {
       throw new FurrowError("the pool was terminated", { code: "not_initialised" });
     }
     const workers = await this.workers;
+    if (this.broken) throw this.broken;
     const of = workers.length;
     for (const w of workers) w.busy(true);
     try {

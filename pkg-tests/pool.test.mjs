@@ -133,6 +133,16 @@ test("a pool throws the errors plan() throws, as FurrowErrors, and keeps plannin
   }
   assert.throws(() => new PlannerPool({ workers: 0 }), (e) => e instanceof FurrowError && e.code === "invalid_option");
   assert.equal(new PlannerPool({ workers: 9 }).size, MAX_WORKERS);
+  // Workers that cannot load the planner: every plan is refused, with the reason.
+  const unloadable = new PlannerPool({ workers: 2, wasm: { module_or_path: new Uint8Array([0, 1, 2, 3]) } });
+  for (let i = 0; i < 2; i++) {
+    await assert.rejects(unloadable.plan(readField("square-1ha.geojson"), {}), (e) => {
+      assert.ok(e instanceof FurrowError);
+      assert.equal(e.code, "not_initialised");
+      return true;
+    });
+  }
+  unloadable.terminate();
   const closed = new PlannerPool({ workers: 1 });
   closed.terminate();
   await assert.rejects(closed.plan(readField("square-1ha.geojson"), {}), (e) => e.code === "not_initialised");

@@ -40,6 +40,7 @@ let lastPlan = null; // in the page: the last plan made, for its tracks
 let inPageTracks = null; // in the page: furrow/tracks (loaded on the first way asked), and the graph of lastPlan
 const calls = new Map(); // id -> resolve, for the ways and files asked of the worker
 let pool = null; // furrow/pool's PlannerPool, once full plans have proved slow
+let poolFailed = false; // a pool could not start or lost a worker: none is started again
 let pooledPlan = null; // the last plan the pool made, until the worker has it for its ways
 
 /** Starts the planner once; resolves to `{ version, worker }` (worker: whether it runs in one). */
@@ -145,9 +146,13 @@ function planInPool(call) {
       finish({ id: call.id, plan, ms: performance.now() - t0, pooled: true });
     },
     (e) => {
-      if (e?.code !== "not_initialised") return finish({ id: call.id, error: plainError(e), ms: performance.now() - t0 });
-      // The pool could not start: this call and the next go to the worker.
+      const failed = e?.code === "not_initialised" || pool?.broken;
+      if (!failed) return finish({ id: call.id, error: plainError(e), ms: performance.now() - t0 });
+      // The pool could not start, or a worker of it failed: this call and the next go to the
+      // worker.
+      pool?.terminate();
       pool = null;
+      poolFailed = true;
       running = null;
       if (waiting) call.resolve({ id: call.id, stale: true });
       else waiting = call;
@@ -164,7 +169,7 @@ function planInPool(call) {
  */
 function maybeStartPool(call, data) {
   const workers = Math.min((globalThis.navigator?.hardwareConcurrency ?? 1) - 1, MAX_WORKERS);
-  if (pool || !worker || !data.plan || data.pooled || data.ms <= POOL_AFTER_MS || workers < 2) return;
+  if (pool || poolFailed || !worker || !data.plan || data.pooled || data.ms <= POOL_AFTER_MS || workers < 2) return;
   if (isFull(call.options)) pool = new PlannerPool({ workers });
 }
 
