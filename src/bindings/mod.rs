@@ -1,8 +1,10 @@
 //! The JavaScript API of the WebAssembly package. All wasm-bindgen code lives here; the planner
-//! itself knows nothing of JavaScript. The package has three modules, each built from this crate
+//! itself knows nothing of JavaScript. The package has four modules, each built from this crate
 //! with one feature, so that a page that only plans never loads the tracks' or the readers' code:
 //!
 //! - `planner-api` ([`plan`]): `plan`, `defaultOptions`, `version` (the package's `furrow` entry);
+//! - `pool-api` ([`plan`]): the same and `planShare`, `finishShare`, for the workers of the
+//!   package's `furrow/pool` entry (`js/pool.js`);
 //! - `tracks-api` ([`tracks`]): `TrackGraph`, `shortestPath` (its `furrow/tracks` entry);
 //! - `formats-api` ([`formats`]): `readFieldFile`, `readShapefile` (its `furrow/formats` entry).
 //!
