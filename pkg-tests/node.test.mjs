@@ -404,7 +404,7 @@ function node(dir, script, file = "main.mjs") {
 
 test("the package as installed: the README's Node example as written, and calls before init", () => {
   const { dir, files } = installPacked("node");
-  for (const file of ["furrow.js", "furrow_wasm.js", "furrow_wasm_bg.wasm", "furrow.d.ts", "load.js", "tracks.js", "tracks.d.ts", "furrow_tracks_wasm.js", "furrow_tracks_wasm_bg.wasm", "LICENSE-MIT", "LICENSE-APACHE"]) {
+  for (const file of ["furrow.js", "furrow_wasm.js", "furrow_wasm_bg.wasm", "furrow.d.ts", "load.js", "pool.js", "pool-worker.js", "furrow_pool_wasm.js", "furrow_pool_wasm_bg.wasm", "tracks.js", "tracks.d.ts", "furrow_tracks_wasm.js", "furrow_tracks_wasm_bg.wasm", "LICENSE-MIT", "LICENSE-APACHE"]) {
     assert.ok(files.includes(file), `the package holds ${file}`);
   }
   // The README's example that reads field.geojson, run as it is written.
@@ -459,6 +459,20 @@ test("the package as installed: the README's Node example as written, and calls 
   );
   assert.match(tracks, /^true not_initialised .*initTracks\(\).*"furrow\/tracks"/);
   assert.match(tracks, /\ntrue track_path true\n$/);
+  // furrow/pool as installed: its workers load their module from the package.
+  const pooled = node(
+    dir,
+    `import { PlannerPool, FurrowError } from "furrow/pool";
+    import { readFileSync } from "node:fs";
+    const pool = new PlannerPool({ workers: 2 });
+    const result = await pool.plan(readFileSync("field.geojson", "utf8"));
+    await pool.plan("{", {}).catch((e) => console.log(e instanceof FurrowError, e.code));
+    pool.terminate();
+    console.log(result.summary.swath_count, result.samples.x.length > 0);`,
+    "pool.mjs",
+  );
+  const alone = furrow.plan(readFileSync(join(dir, "field.geojson"), "utf8")).summary.swath_count;
+  assert.equal(pooled, `true invalid_json\n${alone} true\n`);
   // Without the .wasm file, init() says which file it could not read.
   rmSync(join(dir, "node_modules/furrow/furrow_wasm_bg.wasm"));
   const missing = node(
