@@ -1,7 +1,7 @@
 // The worker of furrow/pool (pool.js): a Web Worker in a browser, a worker thread in Node. It
 // loads the planner (furrow_pool_wasm: the planner with planning in shares), plans one share of
-// each plan the pool asks for (planShare), then finishes the plan if it holds the candidate
-// chosen (finishShare).
+// each plan the pool asks for (planShare), fills its own best candidate while the others work
+// (fillAhead), then finishes the plan if it holds the candidate chosen (finishShare).
 //
 // Messages in: `{ init: input }` first (furrow_pool_wasm_bg.wasm: undefined to load it from
 // beside this file, or a compiled WebAssembly.Module); then `{ id, start: { field, options,
@@ -21,6 +21,7 @@ const planner = loader(core, {
 });
 const planShare = planner.guarded("planShare");
 const finishShare = planner.guarded("finishShare");
+const fillAhead = planner.guarded("fillAhead");
 
 /** An error as plain values: its message, code and place. */
 function plainError(e) {
@@ -44,6 +45,13 @@ function handle(data) {
     if (start) {
       const summaries = planShare(start.field, start.options, start.index, start.of);
       post({ id, summaries }, [summaries.buffer]);
+      // While the other workers finish their shares: this share's best candidate filled, which
+      // is the plan's where it is the one chosen. A failure here is the choice's to meet again.
+      try {
+        fillAhead();
+      } catch {
+        // finishShare fills the chosen candidate itself.
+      }
     } else if (finish) {
       const plan = finishShare(finish);
       const transfer = plan?.samples ? Object.values(plan.samples).map((a) => a.buffer) : [];

@@ -143,8 +143,11 @@ export class PlannerPool {
     }
   }
 
-  /** Sends each worker its message (`message(i)`) and waits for every reply. */
-  async #round(workers, message, transfer = () => []) {
+  /**
+   * Sends each worker its message (`message(i)`) and waits for every reply, or with `until`
+   * only until a reply it accepts (then that reply alone, or null if none).
+   */
+  async #round(workers, message, { transfer = () => [], until } = {}) {
     const id = this.nextId++;
     const replies = workers.map(
       (_, i) =>
@@ -156,7 +159,13 @@ export class PlannerPool {
     );
     try {
       workers.forEach((w, i) => w.post({ id, ...message(i) }, transfer(i)));
-      return await Promise.all(replies);
+      if (!until) return await Promise.all(replies);
+      return await new Promise((resolve) => {
+        let left = replies.length;
+        for (const reply of replies) {
+          reply.then((r) => (until(r) ? resolve(r) : --left === 0 && resolve(null)));
+        }
+      });
     } finally {
       this.replies.delete(id);
     }
@@ -201,10 +210,11 @@ export class PlannerPool {
         all.set(r.summaries, at);
         at += r.summaries.length;
       }
-      const finished = await this.#round(workers, () => ({ finish: all }));
-      const error = finished.find((r) => r.error);
-      if (error) throw fromPlain(error.error);
-      const done = finished.find((r) => r.plan)?.plan;
+      // The worker that holds the plan answers with it; the others (which may still be filling a
+      // candidate of their own) are not waited for.
+      const finished = await this.#round(workers, () => ({ finish: all }), { until: (r) => r.plan || r.error });
+      if (finished?.error) throw fromPlain(finished.error);
+      const done = finished?.plan;
       if (!done) throw new FurrowError("no worker finished the plan", { code: "internal" });
       // The worker sends the GeoJSON as text: a string crosses threads far cheaper than the
       // object it parses to.

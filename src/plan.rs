@@ -247,7 +247,7 @@ fn plan_with_passes(
     let mut outcomes = auto::work_units(&mut prepared, share::Share::WHOLE);
     let summaries: Vec<share::UnitSummary> = outcomes.iter().map(|o| o.summary.clone()).collect();
     let decision = auto::decide(&summaries, &prepared.methods)?;
-    finish(prepared, decision, &mut outcomes)
+    finish(prepared, decision, &mut outcomes, None)
 }
 
 /// The stages before the decomposition: the field cleaned and checked ([`clean_field`]), its
@@ -319,17 +319,26 @@ fn stage(
 }
 
 /// The plan of the candidate `decision` chooses among `outcomes` (which must hold it): its
-/// leftovers filled, its coverage measured.
+/// leftovers filled, its coverage measured; or `ahead`, where that is the chosen candidate
+/// filled before the choice was known.
 fn finish(
     mut prepared: Prepared,
     decision: auto::Decision,
     outcomes: &mut [auto::Outcome],
+    ahead: Option<share::Ahead>,
 ) -> Result<Plan, PlanError> {
     let mut times = prepared.times;
     let mut clock = Instant::now();
+    let slot = decision.chosen();
     let (chosen, decomposition) = auto::choose(&prepared, decision, outcomes)?;
     times.lap(&mut clock, |t| &mut t.metrics);
-    let (mut chosen, coverage) = candidate::fill_leftovers(&prepared, chosen, &mut times)?;
+    let (mut chosen, coverage) = match ahead.filter(|a| Some((a.unit, a.k)) == slot) {
+        Some(ahead) => {
+            times = ahead.times;
+            ahead.filled?
+        }
+        None => candidate::fill_leftovers(&prepared, chosen, &mut times)?,
+    };
     let mut clock = Instant::now();
     candidate::turns_over_crop(&prepared.options, &mut chosen);
     times.lap(&mut clock, |t| &mut t.path);

@@ -72,6 +72,21 @@ pub fn plan_share(
     Ok(js_sys::Float64Array::from(&numbers[..]))
 }
 
+/// Fills this share's own best candidate ahead of the choice (see
+/// [`Pending::fill_ahead`]): the pool's worker calls it after sending its summaries, while the
+/// other shares finish their units.
+#[cfg(feature = "pool-api")]
+#[wasm_bindgen(js_name = fillAhead, skip_typescript)]
+pub fn fill_ahead() {
+    PENDING.with(|p| {
+        let mut begun = p.take();
+        if let Some(b) = begun.as_mut() {
+            b.0.fill_ahead();
+        }
+        p.set(begun);
+    });
+}
+
 /// Finishes the plan [`plan_share`] began, given every share's summaries (one after another):
 /// where this share holds the candidate chosen, the plan as [`plan_js`] gives it but with its
 /// GeoJSON as text in `json` beside `samples` (a string crosses to the page's thread far

@@ -289,6 +289,16 @@ pub(super) enum Decision {
 }
 
 impl Decision {
+    /// The chosen candidate: its unit and its place there.
+    pub(super) fn chosen(&self) -> Option<(usize, usize)> {
+        match self {
+            Decision::Failed(_) => None,
+            Decision::Chosen {
+                candidates, best, ..
+            } => Some(candidates[*best]),
+        }
+    }
+
     /// The unit that holds the chosen candidate (or the failure).
     pub(super) fn unit(&self) -> usize {
         match self {
@@ -309,13 +319,50 @@ pub(super) fn decide(
     summaries: &[UnitSummary],
     methods: &[Decomposition],
 ) -> Result<Decision, PlanError> {
+    decide_among(summaries, methods, false)
+}
+
+/// The candidate [`decide`] would choose among these units alone (the others left out): the
+/// one a share fills ahead of the choice. `None` where a unit failed or none gave a plan.
+pub(super) fn own_best(prep: &Prepared, outcomes: &[Outcome]) -> Option<(usize, usize, Worked)> {
+    let summaries: Vec<UnitSummary> = outcomes.iter().map(|o| o.summary.clone()).collect();
+    let Ok(Decision::Chosen {
+        candidates, best, ..
+    }) = decide_among(&summaries, &prep.methods, true)
+    else {
+        return None;
+    };
+    let (unit, k) = candidates[best];
+    let outcome = outcomes.iter().find(|o| o.summary.unit == unit)?;
+    let mut worked = outcome.worked.get(k)?.clone();
+    if worked.shares_path {
+        let none = outcome
+            .worked
+            .iter()
+            .find(|c| c.method == Decomposition::None)?;
+        worked.path = none.path.clone();
+    }
+    Some((unit, k, worked))
+}
+
+/// [`decide`], or with `partial` among the units in `summaries` alone.
+fn decide_among(
+    summaries: &[UnitSummary],
+    methods: &[Decomposition],
+    partial: bool,
+) -> Result<Decision, PlanError> {
     let missing = || PlanError::new(ErrorCode::Internal, "a part of the plan's work is missing");
     let mut candidates: Vec<(usize, usize, f64, DecompositionCandidate)> = Vec::new();
     let mut seen = Seen::default();
     let mut best_seed: Option<(usize, &Scored)> = None;
     let mut seed_evaluations = 0;
     for (u, unit) in units(methods).into_iter().enumerate() {
-        let s = summaries.iter().find(|s| s.unit == u).ok_or_else(missing)?;
+        let Some(s) = summaries.iter().find(|s| s.unit == u) else {
+            if partial {
+                continue;
+            }
+            return Err(missing());
+        };
         if s.failed {
             return Ok(Decision::Failed(u));
         }

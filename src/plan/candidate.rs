@@ -33,6 +33,7 @@ use geo::Area;
 use web_time::Instant;
 
 /// A plan from the decomposition on.
+#[derive(Clone)]
 pub(super) struct Worked {
     pub(super) method: Decomposition,
     pub(super) headlands: Headlands,

@@ -39,12 +39,15 @@
 //! ```
 
 use super::auto::{self, BlockSignature, Outcome};
+use super::candidate::{fill_leftovers, Worked};
 use super::{contour, covers_more, fewer_passes, finish, stage, Plan, Prepared};
+use crate::coverage::Coverage;
 use crate::decompose::Decomposition;
 use crate::error::{ErrorCode, PlanError, Warning};
 use crate::field::Field;
 use crate::headland::passes::HeadlandPasses;
 use crate::metrics::DecompositionCandidate;
+use crate::metrics::StageTimes;
 use crate::numbers::Shortest;
 use crate::options::PlanOptions;
 
@@ -123,6 +126,18 @@ pub struct Pending {
     /// The stages before the decomposition and the share's units, or the error that stopped
     /// them (the same in every share).
     begun: Result<(Prepared, Vec<Outcome>), PlanError>,
+    /// The share's own best candidate, filled before the choice is known ([`Pending::fill_ahead`]).
+    ahead: Option<Ahead>,
+}
+
+/// A share's own best candidate (its unit and place there), filled before the choice: where
+/// every share's summaries choose it, the plan is finished without filling it again.
+pub(super) struct Ahead {
+    pub(super) unit: usize,
+    pub(super) k: usize,
+    pub(super) filled: Result<(Worked, Coverage), PlanError>,
+    /// The stages' times with the fill.
+    pub(super) times: StageTimes,
 }
 
 impl Pending {
@@ -163,7 +178,28 @@ impl Pending {
             again,
             contour,
             begun,
+            ahead: None,
         })
+    }
+
+    /// Fills the share's own best candidate ahead of the choice: a worker of a pool does it while
+    /// the other shares work their units, so that where it is the one chosen the plan is
+    /// finished sooner. (Where it is not, it was time the worker would have waited.)
+    pub fn fill_ahead(&mut self) {
+        let Ok((prepared, outcomes)) = &self.begun else {
+            return;
+        };
+        let Some((unit, k, worked)) = auto::own_best(prepared, outcomes) else {
+            return;
+        };
+        let mut times = prepared.times;
+        let filled = fill_leftovers(prepared, worked, &mut times);
+        self.ahead = Some(Ahead {
+            unit,
+            k,
+            filled,
+            times,
+        });
     }
 
     /// What this share's units gave, for every share's [`Pending::finish`].
@@ -188,7 +224,7 @@ impl Pending {
                     if !outcomes.iter().any(|o| o.summary.unit == unit) {
                         return None;
                     }
-                    finish(prepared, decision, &mut outcomes)
+                    finish(prepared, decision, &mut outcomes, self.ahead)
                 }
             },
         };
