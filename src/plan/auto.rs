@@ -131,6 +131,22 @@ enum Unit {
     Seed(Seed),
 }
 
+impl Unit {
+    /// Its place among all units (the single-direction ones, then the seeds in order), which
+    /// decides its share.
+    fn place(self) -> usize {
+        match self {
+            Unit::Single => 0,
+            Unit::Seed(seed) => {
+                1 + SPLIT_MERGE_SEEDS
+                    .iter()
+                    .position(|&s| s == seed)
+                    .unwrap_or(0)
+            }
+        }
+    }
+}
+
 /// The units of `methods`, in the order their candidates are compared: the single-direction
 /// decompositions first, then split and merge's seeds.
 fn units(methods: &[Decomposition]) -> Vec<Unit> {
@@ -166,9 +182,12 @@ pub(super) fn work_units(prep: &mut Prepared, share: Share) -> Vec<Outcome> {
 /// [`work_units`], its stages' times added to `times`.
 fn work_units_timed(prep: &Prepared, share: Share, times: &mut StageTimes) -> Vec<Outcome> {
     let mut outcomes = Vec::new();
-    let mut seen = share.whole().then(Seen::default);
+    let mut seen = Seen {
+        results_too: share.whole(),
+        ..Seen::default()
+    };
     for (u, unit) in units(&prep.methods).into_iter().enumerate() {
-        if !share.has(u) {
+        if !share.has(unit.place()) {
             continue;
         }
         let outcome = match unit {
@@ -180,7 +199,7 @@ fn work_units_timed(prep: &Prepared, share: Share, times: &mut StageTimes) -> Ve
                 worked,
                 error: None,
             }),
-            Unit::Seed(seed) => work_seed(prep, u, seed, seen.as_mut(), times),
+            Unit::Seed(seed) => work_seed(prep, u, seed, &mut seen, times),
         };
         match outcome {
             Ok(o) => outcomes.push(o),
@@ -219,19 +238,24 @@ fn work_single(prep: &Prepared, times: &mut StageTimes) -> Result<Vec<Worked>, P
 }
 
 /// The cells and blocks of the seeds worked so far, where a seed that repeats one is skipped.
+/// A seed whose cells an earlier seed of the share had is skipped in every share: the cells
+/// seeds share a share where there are fewer than four ([`Share::has`]), so the share has seen
+/// every earlier one. Blocks are compared only working alone (`results_too`): a share has not
+/// seen the blocks of the greedy seed, and [`decide`] skips a repeat of them.
 #[derive(Default)]
 struct Seen {
     starts: Vec<Vec<BlockSignature>>,
     results: Vec<Vec<BlockSignature>>,
+    results_too: bool,
 }
 
 /// Split and merge from `seed` (unit `u`), worked into a candidate; skipped where its cells or
-/// its blocks are in `seen` (working alone).
+/// (working alone) its blocks are in `seen`.
 fn work_seed(
     prep: &Prepared,
     u: usize,
     seed: Seed,
-    mut seen: Option<&mut Seen>,
+    seen: &mut Seen,
     times: &mut StageTimes,
 ) -> Result<Outcome, PlanError> {
     let mut clock = Instant::now();
@@ -248,7 +272,7 @@ fn work_seed(
         worked: Vec::new(),
         error: None,
     };
-    if let (Some(seen), Some(s)) = (seen.as_deref_mut(), start_signatures) {
+    if let Some(s) = start_signatures {
         if seen.starts.iter().any(|t| same_blocks(t, &s)) {
             times.lap(&mut clock, |t| &mut t.decomposition);
             return Ok(skipped(summary));
@@ -260,7 +284,7 @@ fn work_seed(
     let result = signatures(&sm.blocks);
     summary.evaluations = sm.evaluations;
     summary.result = Some(result.clone());
-    if let Some(seen) = seen {
+    if seen.results_too {
         if seen.results.iter().any(|r| same_blocks(r, &result)) {
             return Ok(skipped(summary));
         }

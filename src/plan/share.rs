@@ -3,8 +3,8 @@
 //! rather than of all.
 //!
 //! The work that plans apart is a *unit*: the single-direction decompositions (`none` and
-//! boustrophedon), or split and merge from one of its seeds. Share *i* of *n* works the units
-//! *u* with *u* mod *n* = *i*. Each share begins the plan ([`Pending::start`]: the field read
+//! boustrophedon), or split and merge from one of its seeds; each share works one or more
+//! ([`Share::has`]). Each share begins the plan ([`Pending::start`]: the field read
 //! and checked, its direction and headlands, its units worked) and tells the others what its
 //! units gave ([`Pending::summaries`], a few numbers per candidate, [`encode`]d for sending).
 //! Given every share's summaries, each share finds the same choice; the share that holds the
@@ -64,9 +64,19 @@ impl Share {
     /// All the units, in one planner.
     pub const WHOLE: Share = Share { index: 0, of: 1 };
 
-    /// Whether the share works unit `u`.
-    pub(super) fn has(self, u: usize) -> bool {
-        u % self.of.max(1) == self.index
+    /// Whether the share works the unit at `place` (the single-direction decompositions 0,
+    /// split and merge's greedy seed 1, its cells seeds 2 and 3). With fewer than four shares
+    /// the two cells seeds share one, the last, so that it skips the second where its cells
+    /// are the first's, as planning alone does: two shares work {0, 1} and {2, 3}, three {0},
+    /// {1} and {2, 3}; four or more one unit each.
+    pub(super) fn has(self, place: usize) -> bool {
+        let share = match self.of {
+            0 | 1 => 0,
+            2 => place / 2,
+            3 => place.min(2),
+            _ => place,
+        };
+        share == self.index
     }
 
     /// Whether the share is the whole work.
