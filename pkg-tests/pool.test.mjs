@@ -62,6 +62,8 @@ test("pools of 3 and 4 workers, and passes counted or to the middle, plan as pla
     ["narrow-curved-strip.geojson", { width: 6, headlandPasses: 1, turnRadius: 6 }],
     ["l-shape.geojson", { width: 12, headlandPasses: "all", turnRadius: 6 }],
     ["many-bays.geojson", { width: 6, headlandPasses: 2, turnRadius: 6, decomposition: "split-merge" }],
+    ["obstacles-2.geojson", { width: 12, headlandPasses: 2, turnRadius: 8, decomposition: "none" }],
+    ["t-shape.geojson", { width: 6, headlandPasses: 2, turnRadius: 6, decomposition: "boustrophedon" }],
   ];
   for (const workers of [3, 4]) {
     const pool = new PlannerPool({ workers });
