@@ -98,15 +98,19 @@ export class PlannerPool {
       workers.map(
         (w, i) =>
           new Promise((resolve, reject) => {
+            let ready = false;
             w.on(
               (data) => {
-                if (data?.ready) resolve();
-                else if (data?.failed) reject(fromPlain(data.failed));
+                if (data?.ready) {
+                  ready = true;
+                  resolve();
+                } else if (data?.failed) reject(fromPlain(data.failed));
                 else this.#reply(i, data);
               },
               (e) => {
+                // Before it is ready, the worker could not start (its script did not load).
                 const error = new FurrowError(`a planner worker failed: ${e.message}`, {
-                  code: "internal",
+                  code: ready ? "internal" : "not_initialised",
                   cause: e,
                 });
                 reject(error);
