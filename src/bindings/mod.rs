@@ -24,7 +24,7 @@ pub mod plan;
 #[cfg(feature = "tracks-api")]
 pub mod tracks;
 
-use crate::error::{ErrorCode, PlanError};
+use crate::error::PlanError;
 use wasm_bindgen::prelude::*;
 
 /// Installs the panic hook, so that a bug shows its message in the console.
@@ -33,13 +33,15 @@ fn start() {
     console_error_panic_hook::set_once();
 }
 
+/// A JavaScript value as JSON text (the planner's and the tracks' inputs).
+#[cfg(any(feature = "planner-api", feature = "tracks-api"))]
 fn json_text(value: &JsValue) -> Result<String, PlanError> {
     js_sys::JSON::stringify(value)
         .ok()
         .and_then(|s| s.as_string())
         .ok_or_else(|| {
             PlanError::new(
-                ErrorCode::InvalidOption,
+                crate::error::ErrorCode::InvalidOption,
                 "expected plain values (numbers, arrays, objects)",
             )
         })
