@@ -11,8 +11,11 @@ import { startServer } from "../scripts/serve.mjs";
 import { codeBlocks, installLinked, ROOT } from "./install.mjs";
 import { launchChromium, SITE } from "./support.mjs";
 
-test("the package plans in Chromium", { timeout: 60_000 }, async () => {
-  assert.ok(existsSync(join(SITE, "pkg/furrow.js")), "target/site is missing: run scripts/build.sh first");
+/**
+ * Runs `body(page, problems)` on a page of the site (target/site, served on localhost) in
+ * Chromium, opened at fields/index.json; `problems` collects the page's errors.
+ */
+async function onSitePage(body) {
   const server = await startServer(SITE, 0);
   const browser = await launchChromium();
   try {
@@ -21,6 +24,16 @@ test("the package plans in Chromium", { timeout: 60_000 }, async () => {
     page.on("console", (m) => m.type() === "error" && problems.push(m.text()));
     page.on("pageerror", (e) => problems.push(String(e)));
     await page.goto(`http://127.0.0.1:${server.address().port}/fields/index.json`);
+    await body(page, problems);
+  } finally {
+    await browser.close();
+    server.close();
+  }
+}
+
+test("the package plans in Chromium", { timeout: 60_000 }, async () => {
+  assert.ok(existsSync(join(SITE, "pkg/furrow.js")), "target/site is missing: run scripts/build.sh first");
+  await onSitePage(async (page, problems) => {
     const result = await page.evaluate(async () => {
       const furrow = await import("/pkg/furrow.js");
       await furrow.default();
@@ -89,21 +102,11 @@ test("the package plans in Chromium", { timeout: 60_000 }, async () => {
     assert.deepEqual(problems, []);
     const slowest = result.times.sort((a, b) => b[1] - a[1]).slice(0, 3);
     console.log(`# slowest plans in Chromium (ms, one run after warm-up): ${JSON.stringify(slowest)}`);
-  } finally {
-    await browser.close();
-    server.close();
-  }
+  });
 });
 
 test("a pool of 2 Web Workers (furrow/pool) plans every corpus field as plan() does in Chromium", { timeout: 120_000 }, async () => {
-  const server = await startServer(SITE, 0);
-  const browser = await launchChromium();
-  try {
-    const page = await browser.newPage();
-    const problems = [];
-    page.on("console", (m) => m.type() === "error" && problems.push(m.text()));
-    page.on("pageerror", (e) => problems.push(String(e)));
-    await page.goto(`http://127.0.0.1:${server.address().port}/fields/index.json`);
+  await onSitePage(async (page, problems) => {
     const result = await page.evaluate(async () => {
       const furrow = await import("/pkg/furrow.js");
       const { PlannerPool, FurrowError } = await import("/pkg/pool.js");
@@ -136,10 +139,7 @@ test("a pool of 2 Web Workers (furrow/pool) plans every corpus field as plan() d
     assert.deepEqual(result.differ, []);
     assert.deepEqual(result.error, { isFurrowError: true, code: "self_intersection" });
     assert.deepEqual(problems, []);
-  } finally {
-    await browser.close();
-    server.close();
-  }
+  });
 });
 
 test("an app bundled by esbuild as the package's README says plans in Chromium", { timeout: 60_000 }, async () => {

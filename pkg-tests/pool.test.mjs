@@ -7,6 +7,7 @@ import { execFileSync } from "node:child_process";
 import { existsSync, mkdtempSync, readFileSync, rmSync, writeFileSync } from "node:fs";
 import { tmpdir } from "node:os";
 import { join } from "node:path";
+import { corpusRows, readField } from "../scripts/corpus.mjs";
 
 const pkgUrl = new URL("../pkg/", import.meta.url);
 const fieldsUrl = new URL("../tests/fields/", import.meta.url);
@@ -16,20 +17,10 @@ if (!existsSync(new URL("pool.js", pkgUrl))) {
 const furrow = await import(new URL("furrow.js", pkgUrl));
 furrow.initSync({ module: readFileSync(new URL("furrow_wasm_bg.wasm", pkgUrl)) });
 const { PlannerPool, planInWorkers, MAX_WORKERS, FurrowError } = await import(new URL("pool.js", pkgUrl));
-
-const readField = (name) => JSON.parse(readFileSync(new URL(name, fieldsUrl), "utf8"));
-
-/** The corpus README's table: file and options. */
-function corpus() {
-  const rows = [];
-  for (const line of readFileSync(new URL("README.md", fieldsUrl), "utf8").split("\n")) {
-    const c = line.split("|").map((s) => s.trim());
-    if (c.length >= 10 && c[1].endsWith(".geojson")) {
-      rows.push({ file: c[1], options: { width: +c[6], headlandPasses: +c[7], turnRadius: +c[8] } });
-    }
-  }
-  return rows;
-}
+const corpus = () =>
+  corpusRows((message) => {
+    throw new Error(message);
+  });
 
 /** A plan without its planning times, which differ run to run; its samples as plain arrays. */
 function comparable(plan) {

@@ -28,11 +28,11 @@
 //! for share in &shares {
 //!     sent.extend(encode(&share.summaries()));
 //! }
-//! let all = decode(&sent).expect("our own encoding");
+//! let all = decode(&sent).ok_or("the summaries do not read back")?;
 //! // One share finishes the plan, the others have nothing to give.
-//! let plans: Vec<_> = shares.into_iter().filter_map(|s| s.finish(&all)).collect();
+//! let mut plans: Vec<_> = shares.into_iter().filter_map(|s| s.finish(&all)).collect();
 //! assert_eq!(plans.len(), 1);
-//! let plan = plans.into_iter().next().unwrap()?;
+//! let plan = plans.remove(0)?;
 //! let alone = furrow::plan(field, &options)?;
 //! assert_eq!(plan.summary.estimated_time_s, alone.summary.estimated_time_s);
 //! # Ok::<(), Box<dyn std::error::Error>>(())
