@@ -6,20 +6,15 @@
 // headland passes as curves. And as KML, read back by @tmcw/togeojson (with @xmldom/xmldom).
 import { test } from "node:test";
 import assert from "node:assert/strict";
-import { existsSync, readFileSync } from "node:fs";
+import { readFileSync } from "node:fs";
 import { ISOXMLManager } from "isoxml";
 import { kml as kmlToGeoJson } from "@tmcw/togeojson";
 import { DOMParser } from "@xmldom/xmldom";
+import { builtEntry } from "./install.mjs";
 
-const pkgUrl = new URL("../pkg/", import.meta.url);
 const fieldsUrl = new URL("../tests/fields/", import.meta.url);
-if (!existsSync(new URL("formats.js", pkgUrl))) {
-  throw new Error("pkg/ is missing: run scripts/build.sh first");
-}
-const furrow = await import(new URL("furrow.js", pkgUrl));
-furrow.initSync({ module: readFileSync(new URL("furrow_wasm_bg.wasm", pkgUrl)) });
-const formats = await import(new URL("formats.js", pkgUrl));
-formats.initSync({ module: readFileSync(new URL("furrow_formats_wasm_bg.wasm", pkgUrl)) });
+const furrow = await builtEntry("furrow.js", "furrow_wasm_bg.wasm");
+const formats = await builtEntry("formats.js", "furrow_formats_wasm_bg.wasm");
 
 /** The corpus README's table: file, width, headland passes, turning radius. */
 function corpus() {

@@ -1,12 +1,23 @@
 // The built package as a user gets it: packed by npm (so only what package.json's `files` lists)
 // and unpacked into node_modules/furrow of a fresh directory under target/pkg-tests/.
 import { execFileSync } from "node:child_process";
-import { mkdirSync, renameSync, rmSync, symlinkSync } from "node:fs";
+import { existsSync, mkdirSync, readFileSync, renameSync, rmSync, symlinkSync } from "node:fs";
 import { join } from "node:path";
 import { fileURLToPath } from "node:url";
 
 export const ROOT = fileURLToPath(new URL("..", import.meta.url));
 export const PKG = join(ROOT, "pkg");
+export const PKG_URL = new URL("../pkg/", import.meta.url);
+
+/** An entry of the package as built in pkg/ (`furrow.js`, ...), started with its wasm module. */
+export async function builtEntry(entry, wasm) {
+  if (!existsSync(new URL(entry, PKG_URL))) {
+    throw new Error("pkg/ is missing: run scripts/build.sh first");
+  }
+  const module = await import(new URL(entry, PKG_URL));
+  module.initSync({ module: readFileSync(new URL(wasm, PKG_URL)) });
+  return module;
+}
 
 /** A fresh, empty directory `target/pkg-tests/NAME`. */
 export function freshDir(name) {

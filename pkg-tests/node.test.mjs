@@ -7,19 +7,12 @@ import { execFileSync } from "node:child_process";
 import { copyFileSync, existsSync, readFileSync, readdirSync, rmSync, writeFileSync } from "node:fs";
 import { join } from "node:path";
 import { gzipSync } from "node:zlib";
-import { codeBlocks, installPacked } from "./install.mjs";
+import { builtEntry, codeBlocks, installPacked, PKG_URL as pkgUrl } from "./install.mjs";
 
-const pkgUrl = new URL("../pkg/", import.meta.url);
 const fieldsUrl = new URL("../tests/fields/", import.meta.url);
-if (!existsSync(new URL("furrow.js", pkgUrl))) {
-  throw new Error("pkg/ is missing: run scripts/build.sh first");
-}
-const furrow = await import(new URL("furrow.js", pkgUrl));
-furrow.initSync({ module: readFileSync(new URL("furrow_wasm_bg.wasm", pkgUrl)) });
-const tracksEntry = await import(new URL("tracks.js", pkgUrl));
-tracksEntry.initSync({ module: readFileSync(new URL("furrow_tracks_wasm_bg.wasm", pkgUrl)) });
-const formatsEntry = await import(new URL("formats.js", pkgUrl));
-formatsEntry.initSync({ module: readFileSync(new URL("furrow_formats_wasm_bg.wasm", pkgUrl)) });
+const furrow = await builtEntry("furrow.js", "furrow_wasm_bg.wasm");
+const tracksEntry = await builtEntry("tracks.js", "furrow_tracks_wasm_bg.wasm");
+const formatsEntry = await builtEntry("formats.js", "furrow_formats_wasm_bg.wasm");
 const fixturesUrl = new URL("../tests/format-fixtures/", import.meta.url);
 
 const readField = (name) => JSON.parse(readFileSync(new URL(name, fieldsUrl), "utf8"));

@@ -4,18 +4,14 @@
 import { test } from "node:test";
 import assert from "node:assert/strict";
 import { execFileSync } from "node:child_process";
-import { existsSync, mkdtempSync, readFileSync, rmSync, writeFileSync } from "node:fs";
+import { mkdtempSync, readFileSync, rmSync, writeFileSync } from "node:fs";
 import { tmpdir } from "node:os";
 import { join } from "node:path";
 import { corpusRows, readField } from "../scripts/corpus.mjs";
+import { builtEntry, PKG_URL as pkgUrl } from "./install.mjs";
 
-const pkgUrl = new URL("../pkg/", import.meta.url);
 const fieldsUrl = new URL("../tests/fields/", import.meta.url);
-if (!existsSync(new URL("pool.js", pkgUrl))) {
-  throw new Error("pkg/ is missing: run scripts/build.sh first");
-}
-const furrow = await import(new URL("furrow.js", pkgUrl));
-furrow.initSync({ module: readFileSync(new URL("furrow_wasm_bg.wasm", pkgUrl)) });
+const furrow = await builtEntry("furrow.js", "furrow_wasm_bg.wasm");
 const { PlannerPool, planInWorkers, MAX_WORKERS, FurrowError } = await import(new URL("pool.js", pkgUrl));
 const corpus = () =>
   corpusRows((message) => {
