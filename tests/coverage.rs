@@ -1,14 +1,15 @@
 //! The plan's coverage figures against an independent count: points spread evenly over the
 //! field (less its obstacles), each counted as worked when it lies within half a width of a
 //! stretch the plan's GeoJSON says is worked (swaths less their lifted stretches, headland
-//! passes), square to it and between its ends, or round one of its corners.
+//! passes), square to it and between its ends, or swept by the implement (a bar square to the
+//! heading) as it swings round one of its joints from the one heading to the other.
 
 use furrow::{plan_geojson, Plan};
 use geo::{Contains, Coord, Distance, Point, Polygon};
 
 mod common;
 
-use common::worked::{worked_stretches, Stretch};
+use common::worked::{worked_stretches, Joint, Stretch};
 
 /// Whether `p` lies within `half` of the stretch, square to it and between its ends.
 fn in_strip(p: Coord, (a, b): Stretch, half: f64) -> bool {
@@ -20,6 +21,27 @@ fn in_strip(p: Coord, (a, b): Stretch, half: f64) -> bool {
     let t = ((p.x - a.x) * d.x + (p.y - a.y) * d.y) / l2;
     let across = ((p.x - a.x) * d.y - (p.y - a.y) * d.x).abs() / l2.sqrt();
     (0.0..=1.0).contains(&t) && across <= half
+}
+
+/// Whether `p` lies within `half` of the joint and on the bar square to the heading at some
+/// heading between the joint's two, turning the shorter way: swept as the implement swings
+/// round it.
+fn swung_over(p: Coord, joint: &Joint, half: f64) -> bool {
+    let q = p - joint.at;
+    if q.x.hypot(q.y) > half {
+        return false;
+    }
+    let (u, v) = (joint.from, joint.to);
+    let turn = (u.x * v.y - u.y * v.x).atan2(u.x * v.x + u.y * v.y);
+    // The bar's direction at the first heading, and where q lies from it (either half of the
+    // bar: modulo a half turn).
+    let bar = (u.x).atan2(-u.y);
+    let past = (q.y.atan2(q.x) - bar).rem_euclid(std::f64::consts::PI);
+    if turn >= 0.0 {
+        past <= turn
+    } else {
+        past == 0.0 || past >= std::f64::consts::PI + turn
+    }
 }
 
 /// The share of the field worked, counted at points `step` metres apart (each point moved by a
@@ -57,9 +79,9 @@ fn independent_coverage(plan: &Plan, step: f64) -> f64 {
             }
         }
     }
-    let mut corner_buckets: std::collections::HashMap<(i64, i64), Vec<Coord>> = Default::default();
+    let mut corner_buckets: std::collections::HashMap<(i64, i64), Vec<Joint>> = Default::default();
     for &c in &corners {
-        corner_buckets.entry(key(c)).or_default().push(c);
+        corner_buckets.entry(key(c.at)).or_default().push(c);
     }
     let (mut inside, mut worked) = (0usize, 0usize);
     for p in grid_points(rect, 0.0, step) {
@@ -72,9 +94,9 @@ fn independent_coverage(plan: &Plan, step: f64) -> f64 {
             let near_corner = || {
                 (i - 1..=i + 1).any(|i| {
                     (j - 1..=j + 1).any(|j| {
-                        corner_buckets.get(&(i, j)).is_some_and(|cs| {
-                            cs.iter().any(|c| (c.x - p.x).hypot(c.y - p.y) <= half)
-                        })
+                        corner_buckets
+                            .get(&(i, j))
+                            .is_some_and(|cs| cs.iter().any(|c| swung_over(p, c, half)))
                     })
                 })
             };
@@ -152,6 +174,34 @@ fn the_coverage_figure_agrees_with_an_independent_count_on_the_corpus() {
             field.name
         );
     }
+}
+
+#[test]
+fn a_wide_implement_s_figure_agrees_with_an_independent_count_on_register_parcels() {
+    // A 24 m sprayer with one pass: on small parcels its curved passes end within a half width
+    // of much of the crop, where a disc swept at each of their points would count it as worked.
+    let options = furrow::PlanOptions {
+        width: 24.0,
+        headland_passes: 1.into(),
+        turn_radius: 9.0,
+        ..furrow::PlanOptions::default()
+    };
+    let mut checked = 0;
+    for (file, i, text) in common::corpus::real_parcels().into_iter().step_by(2) {
+        let Ok(plan) = plan_geojson(&text, &options) else {
+            continue;
+        };
+        let rect = geo::BoundingRect::bounding_rect(&plan.field.boundary).expect("bounds");
+        let step = (rect.width() * rect.height() / 40_000.0).sqrt();
+        let counted = independent_coverage(&plan, step);
+        let figure = plan.summary.coverage.coverage_ratio;
+        assert!(
+            (figure - counted).abs() <= 0.005,
+            "{file} {i}: the plan says {figure:.4} of the field is worked, the count {counted:.4}"
+        );
+        checked += 1;
+    }
+    assert!(checked > 50, "{checked} parcels planned");
 }
 
 #[test]

@@ -40,10 +40,10 @@ pub const CELLS_PER_WIDTH: f64 = 6.0;
 /// width (4 m at 24 m) would misjudge a small field's area by several per cent.
 pub const MAX_CELL_M: f64 = 1.0;
 
-/// Turns at a point of a worked line sharper than this (radians) get the implement's sweep round
-/// the point, as it swings round the turn (a disc); slighter ones the wedges between the strips
-/// either side.
-const SWING_ANGLE: f64 = 0.03;
+/// Turns of the inset's outline sharper than this (radians) get the disc round the point when
+/// the reach is drawn (its sweep round the point by the half width); slighter ones the sectors
+/// either side, the disc's only part outside the strips there.
+const ROUND_ANGLE: f64 = 0.03;
 
 /// The coverage of a plan.
 #[derive(Debug, Clone, Default, PartialEq, Serialize)]
@@ -391,22 +391,34 @@ fn mark_reach(grid: &Grid, centres: &MultiPolygon, cells: &mut [Cell], radius: f
             if let Some(&second) = ring.0.get(1) {
                 line.push(second);
             }
-            sweep(grid, &line, radius, &mut mark);
+            sweep_round(grid, &line, radius, &mut mark);
         }
     }
 }
 
-/// Calls `mark` with every cell a strip of half-width `half` sweeps along `line`: the strip of
-/// each edge and, where the line turns, the swing round the point between them (round the whole
-/// disc at a sharp turn, over the wedges between the strips at a slight one).
+/// Calls `mark` with every cell the implement, a bar of half-width `half` square to its heading,
+/// sweeps along `line`: the strip of each edge and, where the line turns, the sectors it swings
+/// through round the point between them.
 fn sweep(grid: &Grid, line: &[Coord], half: f64, mark: &mut dyn FnMut(Range<usize>)) {
     for (n, w) in line.windows(2).enumerate() {
         grid.fill_strip(w[0], w[1], half, mark);
         if let Some(&next) = line.get(n + 2) {
-            if turn_angle(w[0], w[1], next) > SWING_ANGLE {
-                grid.fill_disc(w[1], half, mark);
+            grid.fill_swing(w[0], w[1], next, half, mark);
+        }
+    }
+}
+
+/// Calls `mark` with every cell of `line` swept round by a disc of `radius`, its ends cut square:
+/// the strip of each edge and, where the line turns, the disc round the point between them (at a
+/// slight turn the sectors either side, within a hair of the disc's part outside the strips).
+fn sweep_round(grid: &Grid, line: &[Coord], radius: f64, mark: &mut dyn FnMut(Range<usize>)) {
+    for (n, w) in line.windows(2).enumerate() {
+        grid.fill_strip(w[0], w[1], radius, mark);
+        if let Some(&next) = line.get(n + 2) {
+            if turn_angle(w[0], w[1], next) > ROUND_ANGLE {
+                grid.fill_disc(w[1], radius, mark);
             } else {
-                grid.fill_wedge(w[0], w[1], next, half, mark);
+                grid.fill_swing(w[0], w[1], next, radius, mark);
             }
         }
     }
@@ -565,7 +577,7 @@ mod tests {
 
     #[test]
     fn a_round_drawn_as_many_short_edges_is_worked_in_full() {
-        // A circle of radius 50 m as 400 edges (each turning 0.016 rad, less than SWING_ANGLE),
+        // A circle of radius 50 m as 400 edges (each turning 0.016 rad),
         // worked 12 m wide: the annulus from 44 to 56 m, π (56² - 44²) = 3,770 m². The strips
         // of the chords alone leave the wedges on the outside of every turn, 113 m² in all.
         let ring: Vec<Coord> = (0..=400)
@@ -580,6 +592,29 @@ mod tests {
         assert!(
             (c.covered_area_m2 - annulus).abs() < 0.01 * annulus,
             "{} m² worked of {annulus}",
+            c.covered_area_m2
+        );
+    }
+
+    #[test]
+    fn a_curve_is_worked_to_its_ends_and_no_farther() {
+        // A quarter circle of radius 20 m as 30 edges (each turning 3 degrees), worked 24 m wide:
+        // the bar across the heading sweeps the quarter annulus from 8 to 32 m, π/4 (32² - 8²)
+        // = 754 m², its ends cut square. A disc of the implement's width at each point would
+        // reach 12 m past both ends.
+        let arc: Vec<Coord> = (0..=30)
+            .map(|i| {
+                let t = (3.0 * i as f64).to_radians();
+                coord! { x: 20.0 * t.cos(), y: 20.0 * t.sin() }
+            })
+            .collect();
+        let field =
+            polygon![(x: -60., y: -60.), (x: 60., y: -60.), (x: 60., y: 60.), (x: -60., y: 60.)];
+        let c = measure(&field, &[], &[arc], 24.0);
+        let quarter = std::f64::consts::FRAC_PI_4 * (32.0f64.powi(2) - 8.0f64.powi(2));
+        assert!(
+            (c.covered_area_m2 - quarter).abs() < 0.02 * quarter,
+            "{} m² worked of {quarter}",
             c.covered_area_m2
         );
     }

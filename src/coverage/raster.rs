@@ -156,27 +156,36 @@ impl Grid {
         }
     }
 
-    /// Calls `visit` with the cells (a row's stretch at a time) in the wedges the strips of
-    /// half-width `half_width` along `a`→`b` and `b`→`c` leave open at `b`, on either side: the
-    /// triangles between `b` and the corners of the two strips' ends there. For a line turning
-    /// slightly at `b` they are the implement's sweep round `b` within a hair (a sector of angle θ
-    /// and its triangle differ by about r²θ³/12), so that a curve drawn as many short edges is
-    /// worked in full.
+    /// Calls `visit` with the cells (a row's stretch at a time) that the implement, a bar of
+    /// half-width `half_width` square to its heading, sweeps as it swings round `b` from the
+    /// heading of `a`→`b` to that of `b`→`c`: the two sectors between the ends of the strips
+    /// along the two edges, one either side of `b` (the strips themselves are drawn apart, by
+    /// [`Grid::fill_strip`]). A sector is drawn as triangles whose chords lie within a quarter
+    /// of a cell of its arc: for a line turning slightly at `b`, one triangle either side (a
+    /// sector of angle θ and its triangle differ by about r²θ³/12), so that a curve drawn as
+    /// many short edges is worked in full; for a sharp turn, a fan of them. Never more: a bar
+    /// swinging round a point sweeps no disc, so that a curved line is worked no farther than its
+    /// ends.
     ///
     /// ```
     /// use furrow::coverage::raster::Grid;
     /// use geo::{coord, Rect};
     ///
     /// let grid = Grid::over(Rect::new(coord! { x: -20., y: -20. }, coord! { x: 20., y: 20. }), 0.1, 1_000_000);
-    /// // A turn of 0.02 rad at the origin with a half-width of 12 m: a wedge of about 1.44 m².
     /// let (a, b) = (coord! { x: -10., y: 0. }, coord! { x: 0., y: 0. });
-    /// let c = coord! { x: 10. * 0.02f64.cos(), y: 10. * 0.02f64.sin() };
-    /// let mut cells = 0;
-    /// grid.fill_wedge(a, b, c, 12.0, &mut |r| cells += r.len());
-    /// let area = cells as f64 * grid.cell_area();
-    /// assert!((area - 2.0 * 144.0 * 0.02 / 2.0).abs() < 0.5, "{area}");
+    /// let area = |c| {
+    ///     let mut cells = 0;
+    ///     grid.fill_swing(a, b, c, 12.0, &mut |r| cells += r.len());
+    ///     cells as f64 * grid.cell_area()
+    /// };
+    /// // A turn of 0.02 rad at the origin with a half-width of 12 m: two sectors of 1.44 m².
+    /// let slight = area(coord! { x: 10. * 0.02f64.cos(), y: 10. * 0.02f64.sin() });
+    /// assert!((slight - 2.0 * 144.0 * 0.02 / 2.0).abs() < 0.5, "{slight}");
+    /// // A right angle: two quarter discs, 226 m².
+    /// let square = area(coord! { x: 0., y: 10. });
+    /// assert!((square - 144.0 * std::f64::consts::FRAC_PI_2).abs() < 2.0, "{square}");
     /// ```
-    pub fn fill_wedge(
+    pub fn fill_swing(
         &self,
         a: Coord,
         b: Coord,
@@ -188,8 +197,27 @@ impl Grid {
         else {
             return;
         };
-        self.fill_convex(&[b, b + n1, b + n2], visit);
-        self.fill_convex(&[b, b - n1, b - n2], visit);
+        // The signed angle from the one heading to the other, within half a turn either way.
+        let turn = (n1.x * n2.y - n1.y * n2.x).atan2(n1.x * n2.x + n1.y * n2.y);
+        // The arc's steps: a chord over an angle s lies h (1 - cos(s/2)) inside its arc.
+        let sag = (self.cell / 4.0).lesser(half_width);
+        let step = 2.0 * (1.0 - sag / half_width).acos();
+        let pieces = (turn.abs() / step).ceil().clamp(1.0, MAX_SWING_PIECES) as usize;
+        let mut from = n1;
+        for k in 1..=pieces {
+            let to = if k == pieces {
+                n2
+            } else {
+                let (sin, cos) = (turn * k as f64 / pieces as f64).sin_cos();
+                Coord {
+                    x: n1.x * cos - n1.y * sin,
+                    y: n1.x * sin + n1.y * cos,
+                }
+            };
+            self.fill_convex(&[b, b + from, b + to], visit);
+            self.fill_convex(&[b, b - from, b - to], visit);
+            from = to;
+        }
     }
 
     /// Calls `visit` with the cells (a row's stretch at a time) whose centres lie within
@@ -262,6 +290,9 @@ impl Grid {
         }
     }
 }
+
+/// Most chords of a sector [`Grid::fill_swing`] draws (a half turn in steps of 3 degrees).
+const MAX_SWING_PIECES: f64 = 60.0;
 
 /// The edges of a closed ring.
 fn ring_edges(ring: &LineString) -> impl Iterator<Item = (Coord, Coord)> + '_ {

@@ -9,15 +9,24 @@ use geo::Coord;
 /// other with the implement down.
 pub type Stretch = (Coord, Coord);
 
-/// The worked stretches of a plan and the inner vertices of its lines worked without a lift.
-pub fn worked_stretches(plan: &Plan) -> (Vec<Stretch>, Vec<Coord>) {
+/// A point where a worked line turns, the implement down on both its edges: the implement swings round `at` from the
+/// heading `from` (the direction of the edge before it) to the heading `to` (the edge after).
+#[derive(Debug, Clone, Copy)]
+pub struct Joint {
+    pub at: Coord,
+    pub from: Coord,
+    pub to: Coord,
+}
+
+/// The worked stretches of a plan and the joints between them.
+pub fn worked_stretches(plan: &Plan) -> (Vec<Stretch>, Vec<Joint>) {
     let (stretches, corners): (Vec<_>, _) = worked_stretches_by_kind(plan);
     (stretches.into_iter().map(|(s, _)| s).collect(), corners)
 }
 
 /// The worked stretches of a plan, each with the `kind` of the feature it belongs to (`swath`,
-/// `headland`, ...), and the inner vertices of its lines worked without a lift.
-pub fn worked_stretches_by_kind(plan: &Plan) -> (Vec<(Stretch, String)>, Vec<Coord>) {
+/// `headland`, ...), and the joints between them.
+pub fn worked_stretches_by_kind(plan: &Plan) -> (Vec<(Stretch, String)>, Vec<Joint>) {
     let json: serde_json::Value =
         serde_json::from_str(&plan.to_geojson_string()).expect("the plan's JSON");
     let mut stretches = Vec::new();
@@ -69,8 +78,17 @@ pub fn worked_stretches_by_kind(plan: &Plan) -> (Vec<(Stretch, String)>, Vec<Coo
             }
             along += length;
         }
-        if lifted.is_empty() && line.len() > 2 {
-            corners.extend_from_slice(&line[1..line.len() - 1]);
+        // The joints between two worked edges: not where the implement is lifted.
+        let mut at = 0.0;
+        for w in line.windows(3) {
+            at += (w[1] - w[0]).x.hypot((w[1] - w[0]).y);
+            if lifted.iter().all(|&(a, b)| at < a - 1e-3 || at > b + 1e-3) {
+                corners.push(Joint {
+                    at: w[1],
+                    from: w[1] - w[0],
+                    to: w[2] - w[1],
+                });
+            }
         }
     }
     (stretches, corners)
