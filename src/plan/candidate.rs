@@ -111,8 +111,9 @@ fn within_block_limit(blocks: &Blocks, width: f64) -> Result<(), PlanError> {
 
 /// Fills what the chosen candidate leaves standing ([`crate::fill`]): the fill's swaths join
 /// its swaths as blocks of their own, its passes along what those leave ([`passes_along`]) the
-/// headland passes, and the plan is routed, pathed and measured again. Gives
-/// the plan with the coverage of its path.
+/// headland passes, and the plan is routed, pathed and measured again. Gives the plan with the
+/// coverage of its path: the filled plan, or the plan as it was where the filled one works less
+/// of the field.
 pub(super) fn fill_leftovers(
     prep: &Prepared,
     worked: Worked,
@@ -196,17 +197,8 @@ pub(super) fn fill_leftovers(
     if pieces.is_empty() && along.is_empty() {
         return Ok((worked, before));
     }
-    let Worked {
-        method,
-        mut headlands,
-        mut swaths,
-        summary,
-        mut warnings,
-        decomposition_evaluations,
-        block_headland_passes,
-        machine,
-        ..
-    } = worked;
+    // The plan as it was is kept until the filled one is known to work more.
+    let (mut headlands, mut swaths) = (worked.headlands.clone(), worked.swaths.clone());
     for p in pieces {
         swaths.append(p);
     }
@@ -223,10 +215,11 @@ pub(super) fn fill_leftovers(
         headlands,
         swaths,
         warnings: Vec::new(),
-        evaluations: summary.direction.evaluations,
-        decomposition_evaluations,
-        block_headland_passes,
+        evaluations: worked.summary.direction.evaluations,
+        decomposition_evaluations: worked.decomposition_evaluations,
+        block_headland_passes: worked.block_headland_passes,
     };
+    let mut warnings = worked.warnings.clone();
     warnings.retain(|w| {
         !matches!(
             w.code,
@@ -246,8 +239,13 @@ pub(super) fn fill_leftovers(
     tally.work(&worked_lines(&path));
     let after = tally.coverage();
     times.lap(&mut clock, |t| &mut t.metrics);
+    // The route round the fill enters the passes elsewhere, and its manoeuvres may lift the
+    // implement over more than the fill works: then the plan without it is kept.
+    if after.covered_area_m2 < before.covered_area_m2 {
+        return Ok((worked, before));
+    }
     let filled = Worked {
-        method,
+        method: worked.method,
         headlands: laid.headlands,
         swaths: laid.swaths,
         blocks,
@@ -256,9 +254,9 @@ pub(super) fn fill_leftovers(
         shares_path: false,
         summary,
         warnings,
-        decomposition_evaluations,
-        block_headland_passes,
-        machine,
+        decomposition_evaluations: worked.decomposition_evaluations,
+        block_headland_passes: worked.block_headland_passes,
+        machine: worked.machine,
     };
     Ok((filled, after))
 }
@@ -899,6 +897,49 @@ mod tests {
     use super::*;
     use crate::plan::plan_geojson;
     use crate::route::plan_route;
+
+    #[test]
+    fn a_fill_never_leaves_more_crop_standing_than_the_plan_it_fills() {
+        // Register parcels where the route round the fill entered the headland passes elsewhere
+        // and its manoeuvres lifted the implement over more than the fill worked (the `none`
+        // candidate: a reversing 6 m drill 28 m² short, a 3 m mower 18 and 14 m² short).
+        let cases = [
+            ("dk_marker_2026_sample", 21, 6.0, 8.0, true),
+            ("dk_marker_2026_sample", 49, 3.0, 5.0, false),
+            ("nl_brp_2023_sample", 3, 3.0, 5.0, false),
+        ];
+        for (name, index, width, turn_radius, reverse) in cases {
+            let file = format!(
+                "{}/tests/fields/real/{name}.geojson",
+                env!("CARGO_MANIFEST_DIR")
+            );
+            let text = std::fs::read_to_string(file).expect("the register sample");
+            let all: serde_json::Value = serde_json::from_str(&text).expect("JSON");
+            let feature = all["features"][index].to_string();
+            let options = PlanOptions {
+                width,
+                turn_radius,
+                reverse,
+                decomposition: Decomposition::None,
+                ..PlanOptions::default()
+            };
+            let (field, _) =
+                Field::from_geojson_str_in(&feature, options.coordinates).expect("read");
+            let prep = super::super::stage(field, &options, vec![], false).expect("prepared");
+            let mut times = StageTimes::default();
+            let chosen = work(&prep, Decomposition::None, None, None, &mut times).expect("worked");
+            let before = crate::coverage::of_plan(&prep.field, &chosen.path, width);
+            let (filled, after) = fill_leftovers(&prep, chosen, &mut times).expect("filled");
+            assert!(
+                after.covered_area_m2 >= before.covered_area_m2,
+                "{name} {index}: {} m² worked before the fill, {} after",
+                before.covered_area_m2,
+                after.covered_area_m2
+            );
+            let measured = crate::coverage::of_plan(&prep.field, &filled.path, width);
+            assert_eq!(measured.covered_area_m2, after.covered_area_m2);
+        }
+    }
 
     #[test]
     fn swaths_in_more_blocks_than_the_limit_are_refused() {
