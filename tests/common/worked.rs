@@ -55,7 +55,7 @@ pub fn worked_stretches_by_kind(plan: &Plan) -> (Vec<(Stretch, String)>, Vec<Joi
             })
             .unwrap_or_default();
         let mut along = 0.0;
-        for w in line.windows(2) {
+        for (k, w) in line.windows(2).enumerate() {
             let d = w[1] - w[0];
             let length = d.x.hypot(d.y);
             // The parts of this stretch not lifted.
@@ -77,17 +77,19 @@ pub fn worked_stretches_by_kind(plan: &Plan) -> (Vec<(Stretch, String)>, Vec<Joi
                 stretches.push(((w[0] + d * (from / length), w[1]), kind.clone()));
             }
             along += length;
-        }
-        // The joints between two worked edges: not where the implement is lifted.
-        let mut at = 0.0;
-        for w in line.windows(3) {
-            at += (w[1] - w[0]).x.hypot((w[1] - w[0]).y);
-            if lifted.iter().all(|&(a, b)| at < a - 1e-3 || at > b + 1e-3) {
-                corners.push(Joint {
-                    at: w[1],
-                    from: w[1] - w[0],
-                    to: w[2] - w[1],
-                });
+            // The joint at this edge's end, where another follows: not where the implement is
+            // lifted.
+            if let Some(&next) = line.get(k + 2) {
+                if lifted
+                    .iter()
+                    .all(|&(a, b)| along < a - 1e-3 || along > b + 1e-3)
+                {
+                    corners.push(Joint {
+                        at: w[1],
+                        from: d,
+                        to: next - w[1],
+                    });
+                }
             }
         }
     }
