@@ -767,10 +767,11 @@ test("viewer: opens field files; errors and warnings in words beside the feature
     await page.evaluate((t) => window.furrow.loadField(t, "rectangle"), good);
     await ready(page);
     assert.ok(await callout.isHidden(), "the error callout is gone");
-    // Nothing of the files before (the rectangle's own turns over crop, at two passes, aside).
-    const left = "[data-code]:visible:not([data-code=turn_crosses_crop])";
-    assert.equal(await page.locator(left).count(), 0, "no callouts or badges left");
-    assert.equal(await page.locator("#warnings li:not([data-code=turn_crosses_crop])").count(), 0);
+    // Nothing of the files before (the rectangle's own turns out of the field or over crop, at
+    // two passes, aside).
+    const own = ":not([data-code=turn_crosses_crop]):not([data-code=turn_leaves_field])";
+    assert.equal(await page.locator(`[data-code]:visible${own}`).count(), 0, "no callouts or badges left");
+    assert.equal(await page.locator(`#warnings li${own}`).count(), 0);
     assert.ok((await countColour(page, "--swath")) > 100, "swaths drawn");
     assert.ok((await countColour(page, "--headland")) > 100, "headland drawn");
     assert.ok((await countColour(page, "--error-mark")) < 10, "nothing drawn in the error colour");
@@ -904,7 +905,12 @@ test("viewer: swath order and reversing turns are settings", { timeout: TIMEOUT 
     const reversing = await page.evaluate(() => ({ options: window.furrow.options, s: window.furrow.plan.summary }));
     assert.equal(reversing.options.reverse, true);
     assert.ok(reversing.s.cusp_count > 0, "turns with cusps");
-    assert.ok(reversing.s.turning_distance_m < forward.turning_distance_m, "reversing turns are shorter");
+    // Its turns keep in the field, where the forward machine's leave it or are longer.
+    assert.equal(reversing.s.turns_outside_field, 0);
+    assert.ok(
+      forward.turns_outside_field > 0 || reversing.s.turning_distance_m < forward.turning_distance_m,
+      "reversing turns stay in and are no longer",
+    );
     await page.selectOption("#pattern", "boustrophedon");
     await ready(page);
     const bous = await page.evaluate(() => window.furrow.plan.summary.route);

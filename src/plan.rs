@@ -332,16 +332,13 @@ fn finish(
     let slot = decision.chosen();
     let (chosen, decomposition) = auto::choose(&prepared, decision, outcomes)?;
     times.lap(&mut clock, |t| &mut t.metrics);
-    let (mut chosen, coverage) = match ahead.filter(|a| Some((a.unit, a.k)) == slot) {
+    let (chosen, coverage) = match ahead.filter(|a| Some((a.unit, a.k)) == slot) {
         Some(ahead) => {
             times = ahead.times;
             ahead.filled?
         }
         None => candidate::fill_leftovers(&prepared, chosen, &mut times)?,
     };
-    let mut clock = Instant::now();
-    candidate::turns_over_crop(&prepared.options, &mut chosen);
-    times.lap(&mut clock, |t| &mut t.path);
     let warnings = std::mem::take(&mut prepared.warnings);
     let sample_spacing = prepared.options.sample_spacing;
     let mut plan = assemble(prepared, chosen, decomposition, warnings);

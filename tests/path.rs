@@ -522,6 +522,106 @@ fn a_reversing_machine_turns_along_an_oblique_edge_off_the_crop() {
     check_connections_crossing(&p, "trapezoid");
 }
 
+/// The trapezoid's oblique edge for the drill forward only: a U-turn between ends staggered
+/// along an edge at 27 degrees to the swaths needs 15 m of headland at a turning radius of 8
+/// m, and two passes give 12. The cheapest forms that stayed in the field looped back over the
+/// ends of swaths worked later. A turn now crosses that crop only where no form the machine
+/// can drive between its ends keeps off it (each form measured here against the strips), out
+/// over the edge where it must; each that leaves is counted and warned of.
+#[test]
+fn a_forward_machine_turns_along_an_oblique_edge_off_the_crop() {
+    let text = r#"{"type":"Polygon","coordinates":[[[0,0],[400,0],[636,120],[0,120],[0,0]]]}"#;
+    let options = PlanOptions {
+        coordinates: furrow::field::Coordinates::Metric,
+        bearing_deg: Some(90.0),
+        ..drill()
+    };
+    let p = plan(text, &options, "trapezoid");
+    let vehicle = options.vehicle();
+    let (mut turns, mut over_crop) = (0, 0);
+    for (k, s) in p.path.segments.iter().enumerate() {
+        if s.kind != SegmentKind::Turn || s.step.is_some() {
+            continue;
+        }
+        turns += 1;
+        let over = longest_over_crop(&p, k + 1, &s.line);
+        if over < 1.0 {
+            continue;
+        }
+        over_crop += 1;
+        let (Some(from), Some(to)) = (s.start(), s.end()) else {
+            panic!("turn {k} without its ends");
+        };
+        for form in vehicle.candidates(from, to) {
+            let line: geo::LineString = form
+                .segments
+                .iter()
+                .flat_map(furrow::path::turn::chord_points)
+                .collect();
+            let off = longest_over_crop(&p, k + 1, &line);
+            assert!(
+                off >= 0.5,
+                "turn {k} over {over:.1} m of crop, where {} keeps off it",
+                form.form.word()
+            );
+        }
+    }
+    assert!(turns >= 15, "{turns} turns");
+    // Two of them, where no form keeps off the crop.
+    assert!(over_crop <= 2, "{over_crop} turns over crop");
+    let outside = p
+        .path
+        .segments
+        .iter()
+        .filter(|s| s.turn.as_ref().is_some_and(|t| !t.inside))
+        .count();
+    assert!(outside > 0, "no turn leaves the field");
+    assert_eq!(outside, p.summary.turns_outside_field);
+    assert!(p
+        .warnings
+        .iter()
+        .any(|w| w.code == WarningCode::TurnLeavesField));
+    check_connections_crossing(&p, "trapezoid");
+}
+
+/// A register parcel where the forward drill's connection into its first block joined the
+/// block's first swath by a loop back over the crop of the swaths beside it (43 m by
+/// `scripts/coverage-table.py`, 8.4 m a metre in from the strips' sides): no join in the
+/// headland of two passes keeps off that crop, and one out over the boundary does. Of its
+/// connections four ran over crop worked later; two do now, each flagged and warned of (the
+/// strips a metre in from their sides and ends, measured here), and those that leave the field
+/// are warned of.
+#[test]
+fn a_forward_machine_joins_a_block_off_the_crop() {
+    let text = common::corpus::real_parcels()
+        .into_iter()
+        .find(|(file, i, _)| file == "dk_marker_2026_sample" && *i == 25)
+        .map(|(_, _, text)| text)
+        .expect("parcel 25");
+    let what = "dk_marker_2026_sample 25";
+    let p = plan(&text, &drill(), what);
+    let mut over_crop = Vec::new();
+    for (k, s) in p.path.segments.iter().enumerate() {
+        if s.kind == SegmentKind::Connection {
+            let over = longest_over_crop(&p, k + 1, &s.line);
+            if over >= 1.0 {
+                assert!(
+                    s.crosses_crop,
+                    "{what}: connection {k} over {over:.1} m unflagged"
+                );
+                over_crop.push((k, over));
+            }
+        }
+    }
+    assert!(over_crop.len() <= 2, "{what}: {over_crop:?}");
+    assert!(
+        over_crop.iter().all(|&(k, _)| k > 3),
+        "{what}: {over_crop:?}"
+    );
+    check_connections_crossing(&p, what);
+    check_connections_leaving(&p, what);
+}
+
 /// A register parcel whose long edge runs nearly along its swaths, with neighbouring lines in
 /// other blocks: a turn between two swaths of a block whose ends lie hundreds of metres apart
 /// drove back past the ends of the lines between, over some 340 to 400 m of their crop (the

@@ -352,25 +352,13 @@ pub fn build_path(
             Some((from, from_block)) => {
                 let same_block = w.block.is_some() && w.block == from_block;
                 if same_block && w.into.is_none() {
-                    // Forward only, the forms of turn that keep in the field seldom have one
-                    // that keeps off the crop too (on the drill's register parcels, 6 of 653
-                    // turns through crop), for 3 % more planning time: the crop is minded
-                    // where the machine reverses (602 to 328); forward turns are flagged
-                    // once the plan is chosen ([`flag_turns_over_crop`]).
-                    let minded = if vehicle.reverse { crop() } else { None };
-                    if let Some((mut t, crossing)) = swath_turn(from, start, vehicle, area, minded)
+                    if let Some((mut t, crossing)) = swath_turn(from, start, vehicle, area, crop())
                     {
                         t.crosses_crop = crossing;
                         // A turn between ends far staggered may run past the ends of the
-                        // swaths between, over their crop (checked here for these alone).
-                        if graph.is_some() && staggered(from, start, vehicle) {
-                            let inside = t.turn.as_ref().is_some_and(|r| r.inside);
-                            t.crosses_crop |= inside
-                                && !vehicle.reverse
-                                && crop().is_some_and(|(c, k)| c.crossed(&t.pieces, k));
-                            if t.crosses_crop {
-                                crossing_turns.push((segments.len(), from, start, w.step));
-                            }
+                        // swaths between, over their crop.
+                        if crossing && graph.is_some() && staggered(from, start, vehicle) {
+                            crossing_turns.push((segments.len(), from, start, w.step));
                         }
                         segments.push(t);
                     }
@@ -427,36 +415,6 @@ pub fn build_path(
     }
     lift::lift_where_needed(&mut segments, route, swaths, vehicle.width / 2.0, area);
     Path { segments }
-}
-
-/// Flags (`crosses_crop`) each turn between swaths of `path` that crosses crop `route` works
-/// later, in the field or out of it: done once for the plan chosen rather than for every
-/// candidate. Where `made_minding` (a machine that reverses), `build_path` has flagged the turns
-/// that stay in the field as it made them, and only those that leave it are checked here (of a
-/// forward machine's, `build_path` flags only those between ends far staggered).
-pub fn flag_turns_over_crop(path: &mut Path, route: &Route, swaths: &Swaths, made_minding: bool) {
-    let mut standing: Option<StandingCrop> = None;
-    // The route step of the next worked segment, walking back from the end.
-    let mut next_step: Option<usize> = None;
-    for seg in path.segments.iter_mut().rev() {
-        if seg.step.is_some() {
-            next_step = seg.step;
-            continue;
-        }
-        let inside = seg.turn.as_ref().is_some_and(|t| t.inside);
-        let between = seg.kind == SegmentKind::Turn
-            && !(made_minding && inside)
-            && matches!(
-                next_step.and_then(|k| route.steps.get(k)),
-                Some(RouteStep::Swath { .. })
-            );
-        if between && !seg.crosses_crop {
-            if let Some(k) = next_step {
-                let crop = standing.get_or_insert_with(|| StandingCrop::of_route(route, swaths));
-                seg.crosses_crop = crop.crossed(&seg.pieces, k);
-            }
-        }
-    }
 }
 
 /// A route step's worked segments, as `build_path` lays them before the connections.
@@ -561,8 +519,9 @@ fn turn_segment(from: Pose, pieces: Vec<Segment>, form: TurnForm, inside: bool) 
 }
 
 /// The turn between two swath ends of a block: the cheapest form that keeps in the field and
-/// off `crop` (the crop standing before that route step), else the cheapest in the field; with
-/// whether it stays in the field but crosses that crop.
+/// off `crop` (the crop standing before that route step); else, forward only, the cheapest off
+/// it outside the field; else the cheapest in the field ([`Vehicle::turn_clear`]). With whether
+/// it crosses that crop.
 fn swath_turn(
     from: Pose,
     to: Pose,
@@ -575,8 +534,10 @@ fn swath_turn(
     }
     let (t, crossing) = match (area, crop) {
         (Some(a), Some((crop, step))) => {
-            let (t, clear) = v.turn_clear(from, to, a, &|s| !crop.crossed(s, step));
-            let crossing = t.inside && !clear;
+            let clear = |s: &[Segment]| !crop.crossed(s, step);
+            let (t, kept_off) = v.turn_clear(from, to, a, &clear);
+            // Of a machine that reverses, a turn that leaves the field is not asked.
+            let crossing = !kept_off && (t.inside || !clear(&t.segments));
             (t, crossing)
         }
         (Some(a), None) => (v.turn(from, to, a), false),
@@ -661,19 +622,34 @@ fn connection(
 ) -> Option<PathSegment> {
     // Most connections keep off the crop as they are: only those that do not are made again
     // minding it (the same connection where the first keeps off it), and the second kept
-    // unless it leaves the field where the first did not.
+    // unless it is worse by [`shortfall`] (for a machine that reverses, where it leaves the
+    // field and the first did not).
     let mut c = connection_minding(from, to, line, v, area, None)?;
     let between = from.is_some() && to.is_some();
     if let (true, Some((standing, step))) = (between, crop) {
         if standing.crossed(&c.pieces, step) {
-            match connection_minding(from, to, line, v, area, crop) {
-                Some(minding) if minding.leaves_field <= c.leaves_field => c = minding,
-                _ => {}
+            c.crosses_crop = true;
+            if let Some(mut minding) = connection_minding(from, to, line, v, area, crop) {
+                minding.crosses_crop = standing.crossed(&minding.pieces, step);
+                let worse = |s: &PathSegment| shortfall(v, s.leaves_field, s.crosses_crop);
+                if worse(&minding) <= worse(&c) {
+                    c = minding;
+                }
             }
-            c.crosses_crop = standing.crossed(&c.pieces, step);
         }
     }
     Some(c)
+}
+
+/// How far a connection or join falls short, to compare two: leaving the field is worse than
+/// crossing crop worked later for a machine that reverses, and better for one that drives
+/// forward only (as their turns, [`Vehicle::turn_clear`]).
+fn shortfall(v: &Vehicle, leaves: bool, crosses: bool) -> (bool, bool) {
+    if v.reverse {
+        (leaves, crosses)
+    } else {
+        (crosses, leaves)
+    }
 }
 
 /// [`connection`], minding `crop` throughout where it is given.
@@ -697,16 +673,15 @@ fn connection_minding(
         }
         None => v.shortest(a, b),
     };
-    // What a join costs when choosing where to join: leaving the field costs more than any
-    // detour along the line, crossing crop more than any but a long one.
+    // What a join costs when choosing where to join: the worse of leaving the field and
+    // crossing crop ([`shortfall`]) costs more than any detour along the line, the other more
+    // than any but a long one.
     let join_cost = |(t, kept_off): (turn::Turn, bool)| {
-        let out = if t.inside || area.is_none() { 0.0 } else { 1e6 };
-        let through = if kept_off || crop.is_none() {
-            0.0
-        } else {
-            CROP_CROSSING_COST_M
-        };
-        t.cost() + out + through
+        let out = !t.inside && area.is_some();
+        let through = !kept_off && crop.is_some();
+        let (worse, other) = shortfall(v, out, through);
+        let cost = |short: bool, metres: f64| if short { metres } else { 0.0 };
+        t.cost() + cost(worse, WORSE_SHORTFALL_M) + cost(other, LESSER_SHORTFALL_M)
     };
     // The same, where only a cost below `limit` matters (any answer at or above it will do):
     // a join whose cheapest form costs more is not checked against the field.
@@ -763,7 +738,8 @@ fn connection_minding(
                 return None;
             }
             let turn = join(a, b);
-            let direct_left = (leaves.get(), !clear(&turn.segments));
+            let direct_leaves = leaves.get();
+            let direct_left = shortfall(v, direct_leaves, !clear(&turn.segments));
             match (pts.len() >= 2 && direct_left != (false, false))
                 .then(|| {
                     leaves.set(false);
@@ -771,9 +747,9 @@ fn connection_minding(
                 })
                 .flatten()
             {
-                Some(along) if (leaves.get(), !clear(&along)) < direct_left => along,
+                Some(along) if shortfall(v, leaves.get(), !clear(&along)) < direct_left => along,
                 _ => {
-                    leaves.set(direct_left.0);
+                    leaves.set(direct_leaves);
                     turn.segments
                 }
             }
@@ -791,9 +767,13 @@ fn connection_minding(
     Some(segment)
 }
 
-/// What crossing crop still to be worked adds to a join's cost when choosing where along a
-/// connection's line to join it (metres): more than the detours along a headland take.
-const CROP_CROSSING_COST_M: f64 = 1e4;
+/// What the worse of leaving the field and crossing crop still to be worked ([`shortfall`])
+/// adds to a join's cost when choosing where along a connection's line to join it (metres):
+/// more than any detour.
+const WORSE_SHORTFALL_M: f64 = 1e6;
+
+/// What the lesser of the two adds: more than the detours along a headland take.
+const LESSER_SHORTFALL_M: f64 = 1e4;
 
 /// Distances along a connection's line (in turning radii) at which a join from the pose before
 /// (or to the pose after) is tried.

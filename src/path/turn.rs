@@ -289,10 +289,18 @@ impl Vehicle {
         self.turn_clear(from, to, area, &|_| true).0
     }
 
-    /// [`Vehicle::turn`] that also keeps `clear` where a form inside the area does: the
-    /// cheapest form inside the area for which `clear` holds, else the cheapest inside (for
-    /// example a turn that must cross crop still to be worked, see [`super::crop`]); with
-    /// whether `clear` holds for it (`false` for a turn that leaves the area, not asked).
+    /// [`Vehicle::turn`] that also keeps `clear` where a form does: the cheapest form inside
+    /// the area for which `clear` holds; else, for a machine that only drives forward, the
+    /// cheapest outside it for which `clear` holds; else the cheapest inside (for example a turn
+    /// that must cross crop still to be worked, see [`super::crop`]). With whether `clear`
+    /// holds for it (for a machine that reverses, `false` for a turn that leaves the area, not
+    /// asked).
+    ///
+    /// A headland too shallow for a forward machine's loop between neighbouring swaths sends
+    /// the loop out over the boundary; its U-turn between ends staggered along an oblique edge,
+    /// which needs r(1 + sin θ) of headland for an edge θ from square to the swaths, goes out
+    /// the same way rather than back over crop still to be worked. A machine that reverses has
+    /// forms that keep in the field wherever the headland holds one turning radius.
     pub fn turn_clear(
         &self,
         from: Pose,
@@ -322,8 +330,8 @@ impl Vehicle {
     }
 
     /// The first of `candidates` (cheapest first) inside `area` for which `clear` holds, else
-    /// the first inside, else the cheapest of all with `inside: false`; with whether `clear`
-    /// holds for it.
+    /// (forward only) the first outside it for which `clear` holds, else the first inside, else
+    /// the cheapest of all with `inside: false`; with whether `clear` holds for it.
     fn first_inside_where(
         &self,
         candidates: Vec<Turn>,
@@ -332,21 +340,27 @@ impl Vehicle {
         area: &Area,
         clear: &dyn Fn(&[Segment]) -> bool,
     ) -> (Turn, bool) {
+        let clear_outside = !self.reverse;
         let mut first: Option<Turn> = None;
         let mut first_inside: Option<Turn> = None;
+        let mut first_clear_outside: Option<Turn> = None;
         for mut t in candidates {
-            if area.contains(&t.segments) {
-                t.inside = true;
+            t.inside = area.contains(&t.segments);
+            if t.inside {
                 if clear(&t.segments) {
                     return (t, true);
                 }
                 if first_inside.is_none() {
                     first_inside = Some(t);
                 }
+            } else if clear_outside && first_clear_outside.is_none() && clear(&t.segments) {
+                first_clear_outside = Some(t);
             } else if first.is_none() {
-                t.inside = false;
                 first = Some(t);
             }
+        }
+        if let Some(t) = first_clear_outside {
+            return (t, true);
         }
         let t = first_inside.or(first).unwrap_or_else(|| straight(from, to));
         (t, false)

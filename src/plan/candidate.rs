@@ -228,6 +228,7 @@ pub(super) fn fill_leftovers(
                 | WarningCode::ImplementLiftedAtEdges
                 | WarningCode::ConnectionLeavesField
                 | WarningCode::ConnectionCrossesCrop
+                | WarningCode::TurnCrossesCrop
         )
     });
     let (route, path, summary) = route_and_path(prep, &laid, &blocks, None, &mut warnings, times)?;
@@ -263,7 +264,8 @@ pub(super) fn fill_leftovers(
 
 /// Routes, paths and measures the swaths laid, taking the route and path of a candidate worked
 /// before where `earlier` gives them (the path is then not built: `None`). Warns in `warnings`
-/// of straight connections and of turns that leave the field.
+/// of straight connections, of turns that leave the field and of connections and turns over
+/// crop worked later.
 fn route_and_path(
     prep: &Prepared,
     laid: &Laid,
@@ -324,6 +326,7 @@ fn route_and_path(
     warnings.extend(lifted_at_edges(path, prep));
     warnings.extend(connections_leaving(path, &prep.options));
     warnings.extend(crop_crossed(path, &prep.options, SegmentKind::Connection));
+    warnings.extend(crop_crossed(path, &prep.options, SegmentKind::Turn));
     let summary = measure(prep, laid, blocks, &route, path, prep.options.machine());
     times.lap(&mut clock, |t| &mut t.metrics);
     Ok((route, built, summary))
@@ -656,19 +659,6 @@ fn crop_crossed(path: &Path, options: &PlanOptions, kind: SegmentKind) -> Option
             reversing_hint(options)
         ),
     ))
-}
-
-/// Flags the turns between swaths of the plan chosen that drive over crop it works later (a
-/// machine that reverses has those in the field flagged as they are made) and warns of them.
-pub(super) fn turns_over_crop(options: &PlanOptions, worked: &mut Worked) {
-    crate::path::flag_turns_over_crop(
-        &mut worked.path,
-        &worked.route,
-        &worked.swaths,
-        options.reverse,
-    );
-    let warning = crop_crossed(&worked.path, options, SegmentKind::Turn);
-    worked.warnings.extend(warning);
 }
 
 /// What the connections' and turns' warnings suggest to a machine that only drives forward.
