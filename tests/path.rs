@@ -489,6 +489,19 @@ fn longest_over_crop(p: &Plan, from: usize, line: &geo::LineString) -> f64 {
     longest
 }
 
+/// A field with an edge at 27 degrees to swaths running east (metric coordinates).
+const TRAPEZOID: &str =
+    r#"{"type":"Polygon","coordinates":[[[0,0],[400,0],[636,120],[0,120],[0,0]]]}"#;
+
+/// Parcel `index` of the Danish register's sample in `tests/fields/real/`.
+fn danish_parcel(index: usize) -> String {
+    common::corpus::real_parcels()
+        .into_iter()
+        .find(|(file, i, _)| file == "dk_marker_2026_sample" && *i == index)
+        .map(|(_, _, text)| text)
+        .unwrap_or_else(|| panic!("parcel {index}"))
+}
+
 /// A field whose swaths end along an edge at 27 degrees to them at one end and square at the
 /// other, worked by a 6 m drill that reverses, with two passes and turns of 8 m: between ends
 /// staggered along the oblique edge, U-turns between swaths 18 m apart (the snake that skips
@@ -498,7 +511,7 @@ fn longest_over_crop(p: &Plan, from: usize, line: &geo::LineString) -> f64 {
 /// headland.
 #[test]
 fn a_reversing_machine_turns_along_an_oblique_edge_off_the_crop() {
-    let text = r#"{"type":"Polygon","coordinates":[[[0,0],[400,0],[636,120],[0,120],[0,0]]]}"#;
+    let text = TRAPEZOID;
     let options = PlanOptions {
         reverse: true,
         coordinates: furrow::field::Coordinates::Metric,
@@ -530,7 +543,7 @@ fn a_reversing_machine_turns_along_an_oblique_edge_off_the_crop() {
 /// over the edge where it must; each that leaves is counted and warned of.
 #[test]
 fn a_forward_machine_turns_along_an_oblique_edge_off_the_crop() {
-    let text = r#"{"type":"Polygon","coordinates":[[[0,0],[400,0],[636,120],[0,120],[0,0]]]}"#;
+    let text = TRAPEZOID;
     let options = PlanOptions {
         coordinates: furrow::field::Coordinates::Metric,
         bearing_deg: Some(90.0),
@@ -593,11 +606,7 @@ fn a_forward_machine_turns_along_an_oblique_edge_off_the_crop() {
 /// are warned of.
 #[test]
 fn a_forward_machine_joins_a_block_off_the_crop() {
-    let text = common::corpus::real_parcels()
-        .into_iter()
-        .find(|(file, i, _)| file == "dk_marker_2026_sample" && *i == 25)
-        .map(|(_, _, text)| text)
-        .expect("parcel 25");
+    let text = danish_parcel(25);
     let what = "dk_marker_2026_sample 25";
     let p = plan(&text, &drill(), what);
     let mut over_crop = Vec::new();
@@ -634,11 +643,7 @@ fn a_forward_machine_joins_a_block_off_the_crop() {
 /// the crop its joins onto and off the headland cannot avoid.
 #[test]
 fn turns_between_far_staggered_ends_keep_to_the_headland() {
-    let text = common::corpus::real_parcels()
-        .into_iter()
-        .find(|(file, i, _)| file == "dk_marker_2026_sample" && *i == 53)
-        .map(|(_, _, text)| text)
-        .expect("parcel 53");
+    let text = danish_parcel(53);
     for (machine, options) in machines(&drill()).into_iter().take(2) {
         let what = format!("dk_marker_2026_sample 53 ({machine})");
         let p = plan(&text, &options, &what);
