@@ -460,6 +460,13 @@ fn connections_and_turns_over_crop_worked_later_are_flagged_and_warned_of() {
 /// The longest run of `line` (points every half metre) over the crop of the swaths the path
 /// works from its segment `from` on: inside a swath's strip less a metre at its sides and ends.
 fn longest_over_crop(p: &Plan, from: usize, line: &geo::LineString) -> f64 {
+    over_crop(p, from, line).0
+}
+
+/// The longest run of `line` over the crop worked from segment `from` on, as
+/// [`longest_over_crop`], and all its runs together (a line across swaths crosses each strip's
+/// crop in a short run).
+fn over_crop(p: &Plan, from: usize, line: &geo::LineString) -> (f64, f64) {
     use geo::{Densify, Euclidean};
     let side = p.options.width / 2.0 - 1.0;
     let strips: Vec<_> = later_swaths(p, from)
@@ -479,14 +486,16 @@ fn longest_over_crop(p: &Plan, from: usize, line: &geo::LineString) -> f64 {
             along > 1.0 && along < length - 1.0 && across < side
         })
     };
-    let (mut longest, mut run, mut last): (f64, f64, Option<geo::Coord>) = (0.0, 0.0, None);
+    let (mut longest, mut total, mut run) = (0.0_f64, 0.0, 0.0);
+    let mut last: Option<geo::Coord> = None;
     for q in Euclidean.densify(line, 0.5).0 {
         let step = last.map_or(0.0, |l| ((q.x - l.x).powi(2) + (q.y - l.y).powi(2)).sqrt());
         run = if over(q) { run + step } else { 0.0 };
+        total += if run > 0.0 { step } else { 0.0 };
         longest = longest.max(run);
         last = Some(q);
     }
-    longest
+    (longest, total)
 }
 
 /// A field with an edge at 27 degrees to swaths running east (metric coordinates).
@@ -664,6 +673,42 @@ fn turns_between_far_staggered_ends_keep_to_the_headland() {
             worst.0
         );
     }
+}
+
+/// `dk_marker_2026_sample_030` for a 3 m mower forward only (two passes, turns of 5 m): a
+/// block's swaths end at a step in the field's side, 100 m back from where the swaths beside
+/// it end. The turn from one to the other drove diagonally back across the block, over 24 m of
+/// the crop of swaths worked later (their strips less a metre at the sides), because the way
+/// along the headland left the field where it joins the headland. A forward machine leaves the
+/// field rather than cross crop (as its turns between neighbouring swaths do): the turn is
+/// driven along the headland, and where it leaves the field it says so.
+#[test]
+fn a_forward_machine_drives_between_far_staggered_ends_along_the_headland() {
+    let text = danish_parcel(30);
+    let what = "dk_marker_2026_sample 30 (mower)";
+    let options = PlanOptions {
+        width: 3.0,
+        turn_radius: 5.0,
+        ..drill()
+    };
+    let p = plan(&text, &options, what);
+    let mut along = 0;
+    for (k, s) in p.path.segments.iter().enumerate() {
+        let Some(turn) = s.turn.as_ref().filter(|_| s.kind == SegmentKind::Turn) else {
+            continue;
+        };
+        let (_, over) = over_crop(&p, k + 1, &s.line);
+        assert!(over < 10.0, "{what}: turn {k} over {over:.1} m of crop");
+        if turn.form == furrow::path::turn::TurnForm::Headland {
+            along += 1;
+            let leaves = depth_outside(&p, &s.line) > 0.01;
+            assert!(
+                !leaves || !turn.inside,
+                "{what}: turn {k} leaves unreported"
+            );
+        }
+    }
+    assert!(along >= 1, "{what}: no turn along the headland");
 }
 
 #[test]

@@ -563,8 +563,9 @@ const STAGGER_RADII: f64 = 6.0;
 
 /// The turns between swath ends at `crossing` (their segment, end poses and route step) that
 /// cross crop worked later, each driven instead along the headland graph's way between its
-/// ends where that way keeps in the field and crosses less of the crop (one search of the
-/// graph for all).
+/// ends where that way falls less short ([`shortfall`]: for a forward machine, off the crop
+/// even if its joins leave the field; for one that reverses, in the field) or as short and
+/// crosses less of the crop (one search of the graph for all).
 fn turns_along_headland(
     segments: &mut [PathSegment],
     crossing: &[(usize, Pose, Pose, usize)],
@@ -589,19 +590,24 @@ fn turns_along_headland(
         let Some(c) = connection_minding(Some(from), Some(to), Some(&line), v, area, crop) else {
             continue;
         };
-        // Kept where it crosses less crop than the turn (at most its joins, where no form
-        // keeps off it, against a turn driven past the ends of the swaths between).
+        // Kept where it falls less short than the turn, or as short and over less crop (at
+        // most its joins, where no form keeps off it, against a turn driven past the ends of
+        // the swaths between).
         let Some(turn) = segments.get(at) else {
             continue;
         };
-        if c.leaves_field
-            || standing.crossed_length(&c.pieces, step)
-                >= standing.crossed_length(&turn.pieces, step)
+        let crosses_crop = standing.crossed(&c.pieces, step);
+        let along = shortfall(v, c.leaves_field, crosses_crop);
+        let outside = turn.turn.as_ref().is_some_and(|t| !t.inside);
+        let direct = shortfall(v, outside, turn.crosses_crop);
+        if along > direct
+            || (along == direct
+                && standing.crossed_length(&c.pieces, step)
+                    >= standing.crossed_length(&turn.pieces, step))
         {
             continue;
         }
-        let crosses_crop = standing.crossed(&c.pieces, step);
-        segments[at] = turn_segment(from, c.pieces, TurnForm::Headland, true);
+        segments[at] = turn_segment(from, c.pieces, TurnForm::Headland, !c.leaves_field);
         segments[at].crosses_crop = crosses_crop;
     }
 }
