@@ -711,6 +711,35 @@ fn a_forward_machine_drives_between_far_staggered_ends_along_the_headland() {
     assert!(along >= 1, "{what}: no turn along the headland");
 }
 
+/// The H-shaped corpus field, cut by split and merge into its two long blocks and the cross
+/// block between them, whose swaths end against the long blocks' sides: the cross block turns
+/// on their ground. Worked before them it turned over their crop (a turn warned of as crossing
+/// it); the block order now works the long blocks first, and no turn between swaths crosses
+/// crop worked later.
+#[test]
+fn a_block_that_turns_on_its_neighbour_is_worked_after_it() {
+    let field = valid_fields()
+        .into_iter()
+        .find(|f| f.name.starts_with("h-shape"))
+        .expect("h-shape in the corpus");
+    let p = plan(&field.text(), &field.options, &field.name);
+    assert!(
+        p.blocks.blocks.len() >= 3,
+        "{} blocks",
+        p.blocks.blocks.len()
+    );
+    for (k, s) in p.path.segments.iter().enumerate() {
+        if s.kind == SegmentKind::Turn && s.step.is_none() {
+            let (_, over) = over_crop(&p, k + 1, &s.line);
+            assert!(over < 1.0, "turn {k} over {over:.1} m of crop");
+        }
+    }
+    assert!(!p
+        .warnings
+        .iter()
+        .any(|w| w.code == WarningCode::TurnCrossesCrop));
+}
+
 #[test]
 fn the_path_follows_the_route_and_turns_cost_what_they_are() {
     // The rectangle: the path's working distance is the route's (swaths and headland passes

@@ -32,6 +32,7 @@ pub mod pattern;
 mod ring;
 pub mod sequence;
 mod turn_floor;
+pub mod turns_onto;
 
 pub use ring::nearest_on_ring;
 
@@ -761,6 +762,7 @@ fn build_problem(
             connection,
             from_start,
             to_finish,
+            precedence: turns_onto::precedence(block_ways, s, settings.width, settings.turn_radius),
         },
         ways,
     })

@@ -2,7 +2,7 @@
 //! (block, way) nodes, its best orders then improved by local search ([`solve_heuristic`]).
 
 use super::compiled::Compiled;
-use super::local_search::LocalSearch;
+use super::local_search::{keep_precedence, LocalSearch};
 use super::{empty_sequence, Sequence, SequenceMethod, SequenceProblem, LARGE_COST};
 use crate::rng::SplitMix64 as Rng;
 use std::cmp::Ordering;
@@ -67,15 +67,21 @@ pub fn solve_heuristic(problem: &SequenceProblem, settings: &AntColony) -> Seque
     if starts.is_empty() {
         starts.push(c.nearest_next());
     }
-    let mut best: Option<LocalSearch> = None;
+    let mut best: Option<(f64, Vec<usize>)> = None;
     for start in starts {
         let mut search = LocalSearch::new(&c, start);
         search.run();
-        if best.as_ref().is_none_or(|b| search.cost < b.cost) {
-            best = Some(search);
+        let mut order = search.order;
+        let cost = if c.follows.is_empty() {
+            search.cost
+        } else {
+            keep_precedence(&c, &mut order)
+        };
+        if best.as_ref().is_none_or(|b| cost < b.0) {
+            best = Some((cost, order));
         }
     }
-    let order = best.map(|b| b.order).unwrap_or_default();
+    let order = best.map(|b| b.1).unwrap_or_default();
     c.sequence(&order, SequenceMethod::AntColony)
 }
 

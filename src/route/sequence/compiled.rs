@@ -46,6 +46,9 @@ pub(super) struct Compiled<'p> {
     /// `near[a * blocks + b]`: going on from block `a` to block `b` is among the cheapest
     /// moves out of `a` or into `b`; empty when every pair counts as near.
     near: Vec<bool>,
+    /// The blocks better worked before others: (first, then, what working `then` first costs)
+    /// ([`Precedence`](super::Precedence), in compiled indices).
+    pub(super) follows: Vec<(usize, usize, f64)>,
 }
 
 impl<'p> Compiled<'p> {
@@ -90,8 +93,10 @@ impl<'p> Compiled<'p> {
             finish_layer: Vec::new(),
             pairs: Vec::new(),
             near: Vec::new(),
+            follows: Vec::new(),
         };
         let count = compiled.block_count();
+        compiled.follows = compiled.compile_precedence();
         let mut start_layer = vec![f64::INFINITY; count * widest];
         let mut finish_layer = vec![f64::INFINITY; count * widest];
         for k in 0..count {
@@ -129,6 +134,45 @@ impl<'p> Compiled<'p> {
             compiled.near = compiled.neighbours();
         }
         compiled
+    }
+
+    /// The problem's precedence in compiled blocks (see `follows`): pairs naming a block without
+    /// ways, or one block twice, are left out.
+    fn compile_precedence(&self) -> Vec<(usize, usize, f64)> {
+        let index = |block: usize| self.blocks.binary_search(&block).ok();
+        self.problem
+            .precedence
+            .iter()
+            .filter_map(|p| match (index(p.first), index(p.then)) {
+                (Some(first), Some(then)) if first != then => {
+                    Some((first, then, clamp_cost(p.cost)))
+                }
+                _ => None,
+            })
+            .collect()
+    }
+
+    /// What block `k` adds for the blocks better worked before it that are not in `set` (a bit
+    /// per compiled block): `k` joins the blocks of `set` worked before it, the others after.
+    pub(super) fn late(&self, k: usize, set: usize) -> f64 {
+        let outside = |b: usize| set.checked_shr(b as u32).is_none_or(|s| s & 1 == 0);
+        self.follows
+            .iter()
+            .filter(|&&(first, then, _)| then == k && outside(first))
+            .map(|&(_, _, cost)| cost)
+            .sum()
+    }
+
+    /// What `order` (compiled blocks) costs for blocks worked before those better worked first.
+    pub(super) fn precedence_cost(&self, order: &[usize]) -> f64 {
+        let at = |b: usize| order.iter().position(|&k| k == b);
+        self.follows
+            .iter()
+            .filter(
+                |&&(first, then, _)| matches!((at(first), at(then)), (Some(f), Some(t)) if t < f),
+            )
+            .map(|&(_, _, cost)| cost)
+            .sum()
     }
 
     /// The near pairs of blocks (see `near`), or none when every pair is near anyway.
@@ -311,7 +355,8 @@ impl<'p> Compiled<'p> {
     }
 
     /// The best way (index within its block) of each block of `order` and the total cost:
-    /// Viterbi through the layers of ways.
+    /// Viterbi through the layers of ways, and the order's precedence cost (which the ways do
+    /// not change).
     pub(super) fn viterbi(&self, order: &[usize]) -> (Vec<usize>, f64) {
         let Some(&first) = order.first() else {
             return (Vec::new(), 0.0);
@@ -357,7 +402,7 @@ impl<'p> Compiled<'p> {
             ways[i] = way;
             way = back[i * w + way];
         }
-        (ways, total)
+        (ways, total + self.precedence_cost(order))
     }
 
     /// The sequence of the given order (of compiled blocks), with its best ways.
@@ -565,6 +610,7 @@ mod tests {
             connection: (0..points * points).map(|_| 100.0 * rng.unit()).collect(),
             from_start: vec![0.0; points],
             to_finish: vec![0.0; points],
+            precedence: Vec::new(),
         };
         let sequence = solve(&problem, 0);
         assert_eq!(sequence.method, SequenceMethod::AntColony);

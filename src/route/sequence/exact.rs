@@ -80,27 +80,30 @@ pub fn solve_exact(problem: &SequenceProblem) -> Sequence {
             let b = inside.trailing_zeros() as usize;
             inside &= inside - 1;
             let before = set & !(1 << b);
+            // Worked before the blocks not in `set`: what that costs where they should come first.
+            let late = c.late(b, set);
             for to in c.ways(b) {
-                row[to] = if before == 0 {
-                    c.start[to]
-                } else {
-                    let previous = &done[before * width..(before + 1) * width];
-                    let arriving = &into[to * width..(to + 1) * width];
-                    // Only the ways of blocks in `before` are finite there.
-                    let mut least = f64::INFINITY;
-                    let mut blocks_before = before;
-                    while blocks_before != 0 {
-                        let k = blocks_before.trailing_zeros() as usize;
-                        blocks_before &= blocks_before - 1;
-                        let ways = c.ways(k);
-                        // A comparison, not f64::min: in wasm that is a call (to keep NaNs).
-                        let cost = min_plus(&previous[ways.clone()], &arriving[ways]);
-                        if cost < least {
-                            least = cost;
+                row[to] = late
+                    + if before == 0 {
+                        c.start[to]
+                    } else {
+                        let previous = &done[before * width..(before + 1) * width];
+                        let arriving = &into[to * width..(to + 1) * width];
+                        // Only the ways of blocks in `before` are finite there.
+                        let mut least = f64::INFINITY;
+                        let mut blocks_before = before;
+                        while blocks_before != 0 {
+                            let k = blocks_before.trailing_zeros() as usize;
+                            blocks_before &= blocks_before - 1;
+                            let ways = c.ways(k);
+                            // A comparison, not f64::min: in wasm that is a call (to keep NaNs).
+                            let cost = min_plus(&previous[ways.clone()], &arriving[ways]);
+                            if cost < least {
+                                least = cost;
+                            }
                         }
-                    }
-                    least
-                };
+                        least
+                    };
             }
         }
     }
@@ -214,7 +217,8 @@ impl Permutations<'_, '_> {
         let blocks = self.used.len();
         if depth == blocks {
             if let Some(a) = last {
-                let cost = self.c.close(a, &self.layers[(depth - 1) * w..depth * w]);
+                let cost = self.c.close(a, &self.layers[(depth - 1) * w..depth * w])
+                    + self.c.precedence_cost(&self.path);
                 if cost < self.best_cost {
                     self.best_cost = cost;
                     self.best.clone_from(&self.path);

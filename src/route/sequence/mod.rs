@@ -18,6 +18,7 @@
 //! ```text
 //! from_start[entry of the first] + sum of the ways' costs
 //!     + sum of connection[exit of a block][entry of the next] + to_finish[exit of the last]
+//!     + the cost of each [`Precedence`] the order breaks
 //! ```
 //!
 //! which is Zhou's Hamiltonian path through the graph of entry/exit nodes, with the internal
@@ -107,6 +108,21 @@ pub struct SequenceProblem {
     pub from_start: Vec<f64>,
     /// The cost from each point to the finish (all zero: the route may end anywhere).
     pub to_finish: Vec<f64>,
+    /// Blocks better worked before others: each costs its `cost` where its `then` block comes
+    /// before its `first` (none: every order costs its driving alone).
+    pub precedence: Vec<Precedence>,
+}
+
+/// Block `first` is better worked before block `then`: working `then` first costs `cost` more
+/// (its turns run over the crop of `first` while it still stands).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Precedence {
+    /// The block to work first (index into [`SequenceProblem::ways`]).
+    pub first: usize,
+    /// The block to work after it.
+    pub then: usize,
+    /// What working `then` before `first` costs, in the units of the connections.
+    pub cost: f64,
 }
 
 /// How a [`Sequence`] was found.
@@ -189,8 +205,9 @@ impl SequenceProblem {
     }
 
     /// The cost of working the blocks in this order with these ways: from the start to the first
-    /// entry, each way's cost, each connection from an exit to the next entry, and from the last
-    /// exit to the finish. Pairs that name no way are skipped; an empty order costs 0.
+    /// entry, each way's cost, each connection from an exit to the next entry, from the last
+    /// exit to the finish, and the [`precedence_cost`](Self::precedence_cost). Pairs that name
+    /// no way are skipped; an empty order costs 0.
     pub fn cost(&self, order: &[(usize, usize)]) -> f64 {
         let mut total = 0.0;
         let mut last: Option<&Way> = None;
@@ -208,7 +225,18 @@ impl SequenceProblem {
         if let Some(way) = last {
             total += self.finish_cost(way.exit);
         }
-        total
+        total + self.precedence_cost(order)
+    }
+
+    /// What the order costs for blocks worked before those they should follow ([`Precedence`]):
+    /// each whose `then` block comes before its `first`, both in the order.
+    pub fn precedence_cost(&self, order: &[(usize, usize)]) -> f64 {
+        let at = |block: usize| order.iter().position(|&(b, _)| b == block);
+        self.precedence
+            .iter()
+            .filter(|p| matches!((at(p.first), at(p.then)), (Some(f), Some(t)) if t < f))
+            .map(|p| clamp_cost(p.cost))
+            .sum()
     }
 }
 
@@ -239,6 +267,7 @@ fn empty_sequence(method: SequenceMethod) -> Sequence {
 ///     connection: x.iter().flat_map(|a| x.iter().map(move |b| f64::abs(a - b))).collect(),
 ///     from_start: vec![0.0; 4],
 ///     to_finish: vec![0.0; 4],
+///     precedence: Vec::new(),
 /// };
 /// let sequence = solve(&problem, 0);
 /// assert_eq!(sequence.method, SequenceMethod::Exact);
@@ -324,6 +353,7 @@ pub fn random_problem(blocks: usize, seed: u64) -> SequenceProblem {
         connection,
         from_start: vec![0.0; points],
         to_finish: vec![0.0; points],
+        precedence: Vec::new(),
     }
 }
 
@@ -350,6 +380,70 @@ mod tests {
         }
     }
 
+    /// Random pairs of blocks better worked one before the other, each costing up to about a
+    /// connection across the problem's square.
+    fn with_precedence(mut problem: SequenceProblem, seed: u64) -> SequenceProblem {
+        let mut rng = Rng::new(seed);
+        let blocks = problem.ways.len();
+        for _ in 0..blocks {
+            let (first, then) = (rng.below(blocks), rng.below(blocks));
+            if first != then {
+                let cost = 2000.0 * rng.unit();
+                problem.precedence.push(Precedence { first, then, cost });
+            }
+        }
+        problem
+    }
+
+    #[test]
+    fn precedence_is_weighed_exactly_and_by_the_heuristic() {
+        for blocks in 2..=7 {
+            for seed in 0..4u64 {
+                let problem = with_precedence(random_problem(blocks, seed + 40), seed);
+                let exact = solve_exact(&problem);
+                let all = exhaustive(&problem);
+                check(&problem, &exact);
+                check(&problem, &all);
+                assert!(
+                    (exact.cost - all.cost).abs() <= 1e-9 * all.cost,
+                    "{blocks} blocks, seed {seed}: {} vs {}",
+                    exact.cost,
+                    all.cost
+                );
+                let order: Vec<usize> = exact.order.iter().map(|&(b, _)| b).collect();
+                assert!((best_ways(&problem, &order).1 - exact.cost).abs() <= 1e-9 * exact.cost);
+                let heuristic = solve_heuristic(&problem, &AntColony::default());
+                check(&problem, &heuristic);
+                assert!(heuristic.cost >= exact.cost * (1.0 - 1e-9));
+            }
+        }
+    }
+
+    #[test]
+    fn a_block_better_worked_first_comes_first_where_that_outweighs_the_driving() {
+        // Exact (6 blocks) and the heuristic (30): the blocks that end and start the best order
+        // by driving alone, then with the last better worked before the first.
+        for blocks in [6, 30] {
+            let mut problem = random_problem(blocks, 5);
+            let driving = solve(&problem, 0);
+            let (Some(&(start, _)), Some(&(end, _))) =
+                (driving.order.first(), driving.order.last())
+            else {
+                panic!("no order");
+            };
+            problem.precedence.push(Precedence {
+                first: end,
+                then: start,
+                cost: 1e6,
+            });
+            let kept = solve(&problem, 0);
+            check(&problem, &kept);
+            let at = |b: usize| kept.order.iter().position(|&(k, _)| k == b);
+            assert!(at(end) < at(start), "{blocks} blocks: {:?}", kept.order);
+            assert!(kept.cost < driving.cost + 1e6, "{blocks} blocks");
+        }
+    }
+
     #[test]
     fn empty_problem() {
         let empty = SequenceProblem {
@@ -358,6 +452,7 @@ mod tests {
             connection: Vec::new(),
             from_start: Vec::new(),
             to_finish: Vec::new(),
+            precedence: Vec::new(),
         };
         let no_ways = SequenceProblem {
             ways: vec![Vec::new(); 3],

@@ -46,6 +46,7 @@ pub(super) fn irregular_problem(blocks: usize, seed: u64) -> SequenceProblem {
         connection,
         from_start,
         to_finish,
+        precedence: Vec::new(),
     }
 }
 
