@@ -259,7 +259,13 @@ fn decomposing_beats_the_best_single_direction_on_fields_with_arms_and_bays() {
         // Compared before the fill of what each leaves standing: the fill works much the same
         // crop either way, in pieces placed after the choice.
         let (a, b) = (before_fill(&single), before_fill(&decomposed));
-        if field.name == "l-shape" {
+        if field.name == "c-shape-escarpment" {
+            // Split and merge's blocks were 0.9 % faster than one direction before the fill
+            // (6,591 s against 6,648) while one of them turned on another's crop; worked after
+            // it they take 6,654 s, and auto keeps one direction, 0.12 % slower before the
+            // fill than the brute-force search's single direction (6,648 s against 6,640).
+            assert!(b <= a * 1.002, "{}: {b:.0} s against {a:.0} s", field.name);
+        } else if field.name == "l-shape" {
             // This L's arms are fat (a foot 240 x 90 m, a bar 131 x 110 m): east-west works
             // both nearly as well as along its length, so one block at one direction is
             // fastest, and a cut between the arms only adds a move between blocks (every

@@ -35,8 +35,8 @@ const PRECEDENCE_WORK: usize = 20_000_000;
 /// Moves blocks of `order` worked before blocks better worked first ([`Precedence`]) while
 /// that lowers the cost of the order with its best ways and its precedence cost: of each pair
 /// broken, the later block tried at every place before the earlier, and the earlier at every
-/// place after the later; the best move taken, until none lowers the cost or the work passes
-/// [`PRECEDENCE_WORK`]. Gives the order's cost. The local search weighs the driving only; this
+/// place after the later; the best move taken, until none lowers the cost or the work reaches
+/// [`PRECEDENCE_WORK`] (then the best move among those tried). Gives the order's cost. The local search weighs the driving only; this
 /// weighs the rest.
 ///
 /// [`Precedence`]: super::Precedence
@@ -50,7 +50,7 @@ pub(super) fn keep_precedence(c: &Compiled, order: &mut Vec<usize>) -> f64 {
     while work < PRECEDENCE_WORK {
         let at = |b: usize| order.iter().position(|&k| k == b);
         let mut best: Option<(f64, Vec<usize>)> = None;
-        for &(first, then, _) in &c.follows {
+        'pairs: for &(first, then, _) in &c.follows {
             let (Some(f), Some(t)) = (at(first), at(then)) else {
                 continue;
             };
@@ -61,6 +61,9 @@ pub(super) fn keep_precedence(c: &Compiled, order: &mut Vec<usize>) -> f64 {
             // `first` moved to before `then`.
             for (from, places) in [(t, f..order.len()), (f, 0..t + 1)] {
                 for to in places {
+                    if work >= PRECEDENCE_WORK {
+                        break 'pairs;
+                    }
                     let mut tried = order.clone();
                     let moved = tried.remove(from);
                     tried.insert(to, moved);
