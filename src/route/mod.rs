@@ -15,6 +15,8 @@
 //! - `ring`: the nearest point of a ring (a closed pass) to a position ([`nearest_on_ring`]).
 //! - `on_the_way`: the blocks that fill what the field's blocks leave, sequenced after them,
 //!   each moved to between two field blocks where it lies on the way.
+//! - [`turns_onto`]: blocks whose swath ends lie against a neighbour's swaths, better worked
+//!   after it (their turns then run over stubble): a precedence the block order weighs.
 //!
 //! The headland passes come last, as in seeding (Zhou et al. 2.1), from the innermost out, so the
 //! machine finishes on the outermost pass at the field edge; or first, as in harvesting, from the
