@@ -711,6 +711,35 @@ fn a_forward_machine_drives_between_far_staggered_ends_along_the_headland() {
     assert!(along >= 1, "{what}: no turn along the headland");
 }
 
+/// `dk_marker_2026_sample_076` (mower): a swath ends at the corner of a notch, 120 m short of
+/// the next, which runs on beside the notch. Driven straight, the turn between them crossed
+/// the block's crop worked later diagonally (40 m of it); along the headland only its joins
+/// cross some, and one leaves the field. A forward machine whose turn crosses crop either way
+/// takes the way over less of it.
+#[test]
+fn a_forward_machine_turning_over_crop_either_way_takes_the_way_over_less() {
+    let text = danish_parcel(76);
+    let what = "dk_marker_2026_sample 76 (mower)";
+    let options = PlanOptions {
+        width: 3.0,
+        turn_radius: 5.0,
+        ..drill()
+    };
+    let p = plan(&text, &options, what);
+    let mut along = 0;
+    for (k, s) in p.path.segments.iter().enumerate() {
+        let Some(turn) = s.turn.as_ref().filter(|_| s.kind == SegmentKind::Turn) else {
+            continue;
+        };
+        let (_, over) = over_crop(&p, k + 1, &s.line);
+        assert!(over < 10.0, "{what}: turn {k} over {over:.1} m of crop");
+        if turn.form == furrow::path::turn::TurnForm::Headland {
+            along += 1;
+        }
+    }
+    assert!(along >= 1, "{what}: no turn along the headland");
+}
+
 /// The H-shaped corpus field, cut by split and merge into its two long blocks and the cross
 /// block between them, whose swaths end against the long blocks' sides: the cross block turns
 /// on their ground. Worked before them it turned over their crop (a turn warned of as crossing

@@ -565,7 +565,8 @@ const STAGGER_RADII: f64 = 6.0;
 /// cross crop worked later, each driven instead along the headland graph's way between its
 /// ends where that way falls less short ([`shortfall`]: for a forward machine, off the crop
 /// even if its joins leave the field; for one that reverses, in the field) or as short and
-/// crosses less of the crop (one search of the graph for all).
+/// crosses less of the crop; a forward machine's turn that crosses crop either way takes the
+/// way over less of it, in the field or not (one search of the graph for all).
 fn turns_along_headland(
     segments: &mut [PathSegment],
     crossing: &[(usize, Pose, Pose, usize)],
@@ -600,11 +601,17 @@ fn turns_along_headland(
         let along = shortfall(v, c.leaves_field, crosses_crop);
         let outside = turn.turn.as_ref().is_some_and(|t| !t.inside);
         let direct = shortfall(v, outside, turn.crosses_crop);
-        if along > direct
-            || (along == direct
-                && standing.crossed_length(&c.pieces, step)
-                    >= standing.crossed_length(&turn.pieces, step))
-        {
+        let less_crop = || {
+            standing.crossed_length(&c.pieces, step) < standing.crossed_length(&turn.pieces, step)
+        };
+        // A forward machine whose turn crosses crop either way takes the way over less of it,
+        // in the field or not.
+        let better = if !v.reverse && crosses_crop && turn.crosses_crop {
+            less_crop()
+        } else {
+            along < direct || (along == direct && less_crop())
+        };
+        if !better {
             continue;
         }
         segments[at] = turn_segment(from, c.pieces, TurnForm::Headland, !c.leaves_field);
