@@ -740,6 +740,25 @@ fn a_forward_machine_turning_over_crop_either_way_takes_the_way_over_less() {
     assert!(along >= 1, "{what}: no turn along the headland");
 }
 
+/// Register parcels where the forward drill (two passes, turns of 8 m) turned between swath
+/// ends near each other over crop worked later: a loop swinging over the next swaths' ends at a
+/// step in the field's side, a U-turn cutting a corner. No form of turn between the ends keeps
+/// off the crop there; driven along the headland instead, each turn crosses less of it.
+#[test]
+fn a_forward_machine_turning_over_crop_near_its_ends_drives_along_the_headland() {
+    for index in [7, 13, 72, 84] {
+        let text = danish_parcel(index);
+        let what = format!("dk_marker_2026_sample {index} (drill)");
+        let p = plan(&text, &drill(), &what);
+        for (k, s) in p.path.segments.iter().enumerate() {
+            if s.kind == SegmentKind::Turn && s.step.is_none() {
+                let (_, over) = over_crop(&p, k + 1, &s.line);
+                assert!(over < 3.0, "{what}: turn {k} over {over:.1} m of crop");
+            }
+        }
+    }
+}
+
 /// The H-shaped corpus field, cut by split and merge into its two long blocks and the cross
 /// block between them, whose swaths end against the long blocks' sides: the cross block turns
 /// on their ground. Worked before them it turned over their crop (a turn warned of as crossing

@@ -355,9 +355,10 @@ pub fn build_path(
                     if let Some((mut t, crossing)) = swath_turn(from, start, vehicle, area, crop())
                     {
                         t.crosses_crop = crossing;
-                        // A turn between ends far staggered may run past the ends of the
-                        // swaths between, over their crop.
-                        if crossing && graph.is_some() && staggered(from, start, vehicle) {
+                        // Where no form of turn keeps off the crop, the way along the
+                        // headland may: past the ends of the swaths between, or round a
+                        // corner the turn would cut.
+                        if crossing && graph.is_some() {
                             crossing_turns.push((segments.len(), from, start, w.step));
                         }
                         segments.push(t);
@@ -549,17 +550,6 @@ fn swath_turn(
     };
     Some((turn_segment(from, t.segments, t.form, t.inside), crossing))
 }
-
-/// Whether the ends of a turn from `from` to `to` lie more than [`STAGGER_RADII`] turning radii
-/// apart along the swath it leaves.
-fn staggered(from: Pose, to: Pose, v: &Vehicle) -> bool {
-    let (s, c) = from.heading.sin_cos();
-    ((to.x - from.x) * c + (to.y - from.y) * s).abs() > STAGGER_RADII * v.turn_radius
-}
-
-/// The stagger between the ends of a turn between swaths, in turning radii, beyond which the
-/// turn's crop is checked and the way along the headland tried where it crosses some.
-const STAGGER_RADII: f64 = 6.0;
 
 /// The turns between swath ends at `crossing` (their segment, end poses and route step) that
 /// cross crop worked later, each driven instead along the headland graph's way between its
