@@ -713,9 +713,9 @@ fn a_forward_machine_drives_between_far_staggered_ends_along_the_headland() {
 
 /// `dk_marker_2026_sample_076` (mower): a swath ends at the corner of a notch, 120 m short of
 /// the next, which runs on beside the notch. Driven straight, the turn between them crossed
-/// the block's crop worked later diagonally (40 m of it); along the headland only its joins
-/// cross some, and one leaves the field. A forward machine whose turn crosses crop either way
-/// takes the way over less of it.
+/// the block's crop worked later diagonally (15.7 m of the strips less a metre at their sides,
+/// as measured here); along the headland only its joins cross some, and one leaves the field.
+/// A forward machine whose turn crosses crop either way takes the way over less of it.
 #[test]
 fn a_forward_machine_turning_over_crop_either_way_takes_the_way_over_less() {
     let text = danish_parcel(76);
